@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs every build and run dependency of isomuscle from Debian 12 packages.
+# Idempotent: when everything is present it only checks (dpkg-query) and returns in well under a second.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libeigen3-dev                     # dense per-point tensors, sparse matrices
+  libsuitesparse-dev libopenblas0-pthread  # CHOLMOD (sparse Cholesky), UMFPACK fallback; fast BLAS for them
+  libocct-data-exchange-dev libocct-modeling-algorithms-dev
+  libocct-foundation-dev libocct-modeling-data-dev libtbb-dev  # OpenCASCADE: IGES read/write
+  libhdf5-dev                       # field output read by ParaView through XDMF
+  libgmsh-dev gmsh                  # tetrahedral meshing of the same shapes
+  libtomlplusplus-dev               # scene files
+  libcli11-dev                      # command line
+  nlohmann-json3-dev                # summary.json, --json output
+  libgtest-dev libgmock-dev         # unit tests
+  libbenchmark-dev                  # bench/
+  python3 python3-numpy python3-matplotlib  # validation figures
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"

@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# The README's test command: installs dependencies, builds, runs every test (release), then the unit
+# tests again under AddressSanitizer + UndefinedBehaviorSanitizer.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+bash "$root/scripts/build.sh" release
+(cd "$root/build/release" && ctest --output-on-failure -j "$(nproc)")
+if [ "${ISOMUSCLE_SKIP_ASAN:-0}" != "1" ]; then
+  bash "$root/scripts/build.sh" asan
+  # The sanitizer run covers the unit tests; whole-run (slow) tests carry the label "slow".
+  (cd "$root/build/asan" && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j "$(nproc)" -LE slow)
+fi
