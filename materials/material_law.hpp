@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace isomuscle::materials {
 
@@ -68,6 +69,18 @@ class MaterialLaw {
   // Initial shear and bulk moduli (Pa), for stabilisation scales, penalty sizes and reports.
   virtual double shear_modulus() const = 0;
   virtual double bulk_modulus() const = 0;
+
+  // Reporting (material driver, probes, outputs); none of it is needed by assembly.
+  // Names of the history entries, in storage order (e.g. "lambda_s", "lambda_m").
+  virtual std::vector<std::string> history_names() const { return {}; }
+  // Activation level f_t(time) in [0, 1]; 0 for passive laws.
+  virtual double activation(double /*time*/) const { return 0.0; }
+  // The Cauchy stress split into the law's named parts, which sum to the total (thesis 3.44), e.g.
+  // {"see", "pe", "matrix", "vol"} for the Hill laws. history is the trial history that evaluate()
+  // wrote for the same input. Default: one part, "total".
+  virtual std::vector<std::string> cauchy_part_names() const { return {"total"}; }
+  virtual void cauchy_parts(const PointInput& in, std::span<const double> trial_history,
+                            std::span<Eigen::Matrix3d> parts) const;
 };
 
 // Voigt helpers shared by laws and callers.
