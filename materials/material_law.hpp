@@ -1,14 +1,14 @@
 #pragma once
 // The one interface between a constitutive law at a quadrature point and the discretisations (IGA
-// and tetrahedra). A law is a function (F, N, t, dt, committed history) -> (S, dS/dE, trial history,
-// status); it knows no DOFs, no elements and no quadrature (DESIGN.md, line 3).
+// and tetrahedra). A law is a function (F, N, t, dt, committed history) -> (S, dS/dE, trial
+// history, status); it knows no DOFs, no elements and no quadrature (DESIGN.md, line 3).
 //
 // Conventions (used by every law and every caller):
 // * S is the second Piola–Kirchhoff stress, Pa.
 // * The tangent is the 6x6 Voigt matrix of dS/dE (E the Green–Lagrange strain) in the order
 //   11, 22, 33, 12, 23, 13: S_voigt = [S11 S22 S33 S12 S23 S13], and dS_voigt = C * dE_voigt with
-//   dE_voigt = [dE11 dE22 dE33 2dE12 2dE23 2dE13] (engineering shear). For hyperelastic laws and for
-//   the Hill muscle laws (an incremental potential within a step) C is symmetric.
+//   dE_voigt = [dE11 dE22 dE33 2dE12 2dE23 2dE13] (engineering shear). For hyperelastic laws and
+//   for the Hill muscle laws (an incremental potential within a step) C is symmetric.
 // * History is a flat array of history_size() doubles per quadrature point; the caller keeps the
 //   committed copy and passes a scratch copy for the trial values, committing it at convergence.
 #include <Eigen/Core>
@@ -55,6 +55,8 @@ class MaterialLaw {
 
   // Full response: S and dS/dE. Never returns NaN with status ok.
   // compute_tangent = false lets a residual-only evaluation skip the tangent.
+  // (Implementations in this folder: with compute_tangent = false out.tangent is left untouched;
+  // with a status other than ok, out.S is zero and out.history holds the committed values.)
   virtual PointStatus evaluate(const PointInput& in, PointResult& out,
                                bool compute_tangent = true) const = 0;
 

@@ -1,8 +1,8 @@
 #pragma once
 // The interface a discretisation (iga/, tet/) offers to Newton and the time stepper (MFEM's
-// NonlinearForm: residual "Mult", tangent "GetGradient"). Unknowns are the *free* degrees of freedom
-// only: prescribed (Dirichlet) values are applied by the problem itself in begin_step, so the
-// tangent handed to the linear solver is the reduced, symmetric matrix.
+// NonlinearForm: residual "Mult", tangent "GetGradient"). Unknowns are the *free* degrees of
+// freedom only: prescribed (Dirichlet) values are applied by the problem itself in begin_step, so
+// the tangent handed to the linear solver is the reduced, symmetric matrix.
 //
 // Any auxiliary fields of a mixed formulation (element-wise pressure and dilatation) are condensed
 // inside the problem and are functions of u, so Newton sees displacements only.
@@ -36,6 +36,10 @@ class NonlinearProblem {
   // K = dr/du. The sparsity pattern of K is the same at every call (so a symbolic factorisation is
   // reused). Never returns NaN with ok status: an inverted element (J <= 0) or a failed local
   // material solve returns a failure naming the place.
+  // The tangent holds the storage the linear solver is set for (MatrixStorage::Upper by default:
+  // the upper triangle only, as SparsityPattern builds it). NewtonSolver passes the same matrix
+  // object at every call, so a problem may give it its pattern once (SparsityPattern::
+  // make_matrix) and afterwards only overwrite the values.
   virtual EvaluationStatus evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& residual,
                                     SparseMatrix* tangent) = 0;
 

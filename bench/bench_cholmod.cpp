@@ -1,0 +1,160 @@
+// CHOLMOD supernodal Cholesky on 3D elasticity stiffness matrices (tests/solver/
+// elasticity_fixture.hpp): symbolic analysis and numeric factorisation time against the number of
+// unknowns, for trilinear hexahedra (degree 1) and the quadratic B-spline IGA pattern (degree 2),
+// through the raw C API (solver::CholmodCholesky, with a choice of ordering) and through
+// Eigen::CholmodSupernodalLLT (same CHOLMOD routines, CHOLMOD's default ordering).
+//
+// Arguments: {elements per side, degree, ordering (0 default, 1 AMD, 2 METIS, 3 NESDIS)}.
+// Counters: unknowns, nnz_L (nonzeros of the factor), GFlop (of one numeric factorisation) and
+// GFlop/s (against wall time).
+#include <benchmark/benchmark.h>
+
+#include <Eigen/CholmodSupport>
+#include <map>
+#include <utility>
+
+#include "solver/cholmod_cholesky.hpp"
+#include "tests/solver/elasticity_fixture.hpp"
+
+namespace {
+
+using isomuscle::solver::CholeskyOrdering;
+using isomuscle::solver::CholmodCholesky;
+using isomuscle::solver::SparseMatrix;
+
+// Upper triangle of the stiffness of an n^3 grid of the given degree, built once per size.
+const SparseMatrix& stiffness(int n, int degree) {
+  static std::map<std::pair<int, int>, SparseMatrix> cache;
+  auto it = cache.find({n, degree});
+  if (it == cache.end()) {
+    it = cache
+             .emplace(std::make_pair(n, degree),
+                      isomuscle::solver::testing::make_elasticity({n, degree}).stiffness)
+             .first;
+  }
+  return it->second;
+}
+
+CholeskyOrdering ordering(int64_t code) {
+  switch (code) {
+    case 1:
+      return CholeskyOrdering::Amd;
+    case 2:
+      return CholeskyOrdering::Metis;
+    case 3:
+      return CholeskyOrdering::Nesdis;
+    default:
+      return CholeskyOrdering::Default;
+  }
+}
+
+void set_counters(benchmark::State& state, const SparseMatrix& k, const CholmodCholesky& chol,
+                  bool per_second_flops) {
+  state.counters["unknowns"] = static_cast<double>(k.rows());
+  state.counters["nnz_L"] = chol.factor_nonzeros();
+  state.counters["GFlop"] = chol.factor_flops() * 1e-9;
+  if (per_second_flops) {
+    state.counters["GFlop/s"] = benchmark::Counter(chol.factor_flops() * 1e-9,
+                                                   benchmark::Counter::kIsIterationInvariantRate);
+  }
+}
+
+// Symbolic analysis (ordering, elimination tree, supernodes): once per pattern in a run.
+void BM_RawSymbolic(benchmark::State& state) {
+  const SparseMatrix& k =
+      stiffness(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  CholmodCholesky chol(ordering(state.range(2)));
+  for (auto _ : state) {
+    chol.analyze(k);
+  }
+  set_counters(state, k, chol, false);
+  state.SetLabel(chol.ordering_used());
+}
+
+// Numeric factorisation: once per Newton iteration.
+void BM_RawNumeric(benchmark::State& state) {
+  const SparseMatrix& k =
+      stiffness(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  CholmodCholesky chol(ordering(state.range(2)));
+  chol.analyze(k);
+  for (auto _ : state) {
+    if (!chol.factorize(k).ok) {
+      state.SkipWithError("factorisation failed");
+      break;
+    }
+  }
+  set_counters(state, k, chol, true);
+  state.SetLabel(chol.ordering_used());
+}
+
+void BM_EigenSymbolic(benchmark::State& state) {
+  const SparseMatrix& k =
+      stiffness(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt;
+  for (auto _ : state) {
+    llt.analyzePattern(k);
+  }
+  state.counters["unknowns"] = static_cast<double>(k.rows());
+}
+
+void BM_EigenNumeric(benchmark::State& state) {
+  const SparseMatrix& k =
+      stiffness(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt;
+  llt.analyzePattern(k);
+  for (auto _ : state) {
+    llt.factorize(k);
+    if (llt.info() != Eigen::Success) {
+      state.SkipWithError("factorisation failed");
+      break;
+    }
+  }
+  state.counters["unknowns"] = static_cast<double>(k.rows());
+}
+
+// Degree 1: 3.3k, 11.5k, 25k, 49k unknowns; degree 2 (IGA): 4.8k, 11.5k, 22k, 39k unknowns.
+void sizes(benchmark::internal::Benchmark* b) {
+  for (int n : {10, 15, 20, 25}) {
+    b->Args({n, 1, 0});
+  }
+  for (int n : {10, 14, 18, 22}) {
+    b->Args({n, 2, 0});
+  }
+}
+
+// Orderings compared on one size of each degree.
+void orderings(benchmark::internal::Benchmark* b) {
+  for (int code : {1, 2, 3}) {
+    b->Args({20, 1, code});
+    b->Args({14, 2, code});
+  }
+}
+
+}  // namespace
+
+// Wall time, and CPU time summed over all threads (BLAS threads included): on a shared machine the
+// CPU time is the steadier measure of the work.
+BENCHMARK(BM_RawSymbolic)
+    ->Apply(sizes)
+    ->Apply(orderings)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+BENCHMARK(BM_RawNumeric)
+    ->Apply(sizes)
+    ->Apply(orderings)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+BENCHMARK(BM_EigenSymbolic)
+    ->Apply(sizes)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+BENCHMARK(BM_EigenNumeric)
+    ->Apply(sizes)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+BENCHMARK_MAIN();

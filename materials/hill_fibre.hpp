@@ -1,0 +1,92 @@
+#pragma once
+// The Hill three-element fibre of a material point (thesis 3.20–3.41, Appendix D; chapter 5:
+// 5.34–5.39, 5.52–5.54): PE in parallel with CE + SEE in series. Given the isochoric fibre stretch
+// λ̄f at t + Δt and the committed history it returns the fibre "stress" U'_f = σ_SEE + σ_PE (3.20)
+// and its consistent derivative U''_f = dU'_f/dλ̄f, and writes the trial history.
+//
+// History layout (kHillHistorySize doubles per point):
+//   [0] lambda_s       λs, SEE stretch L_SEE/L_SEE0 (Fortran hsv(5))
+//   [1] lambda_m       λm, CE stretch L_CE/L_CE0 (hsv(6))
+//   [2] delta_lambda_m Δλm of the last step (hsv(8); the lagged branch choice reads it)
+//   [3] lambda_f       λ̄f at the end of the last step (the lagged f_λ reads it; the Fortran
+//                      stores σ0 f_λ(λ̄f) in hsv(7) instead)
+//
+// Readings of the thesis chosen here (SPEC §2):
+// * f_λ is evaluated at the current stretch λ̄f^(t+Δt) (implicit: the stress is then a function
+//   of the current state only, which a Newton solver and its tangent need), not at the previous
+//   step's stretch as in the Fortran; explicit_lag = true restores the Fortran's lag of both f_λ
+//   and the force–velocity branch.
+// * The force–velocity branch is that of the solution's own Δλm (see series_element_update.hpp);
+//   the Fortran picks it from the previous step's Δλm (explicit_lag = true).
+// * Inactive (s = σ0 f_t f_λ = 0): σ_SEE = σ_CE = 0 and the CE slides freely, so the history stays
+//   consistent: λs = 1, λm = (1 + k) λ̄f - k. This is also the s -> 0 limit of the local solve.
+//   The Fortran instead freezes λm while inactive and calls the fibre active only for
+//   t0 < t < t1 + 0.1 s; here a fibre is active exactly when f_t(t) f_λ(λ̄f) > 0.
+// * Δt = 0 with s > 0: the instantaneous response with the CE length frozen (the Δt -> 0 limit).
+// * Tangent: consistent (implicit function theorem on the local equation, including f_λ(λ̄f) and,
+//   for tang2009, k_c(λ̄f)), or the thesis's frozen-CE form 5.54 with frozen_ce_tangent = true.
+#include <span>
+
+#include "materials/hill_curves.hpp"
+
+namespace isomuscle::materials {
+
+enum HillHistoryIndex : int {
+  kLambdaS = 0,
+  kLambdaM = 1,
+  kDeltaLambdaM = 2,
+  kLambdaF = 3,
+  kHillHistorySize = 4,
+};
+
+struct HillFibreParameters {
+  double alpha = 10.0;       // α, SEE (3.23)
+  double beta = 1.0e3;       // β, SEE (3.23), Pa
+  double k = 0.3;            // L_SEE0/L_CE0 (D.2)
+  double sigma0 = 7.0e5;     // maximal isometric stress σ0, Pa
+  double A = 4.0;            // PE coefficient: σ_PE = σ0 A (λ̄f - 1)² (3.41; 5.37 has A = 4)
+  double lambda_opt = 1.05;  // optimal fibre stretch (3.28)
+  double k_c = 5.0;          // force–velocity shape (3.29), used when a_v == 0
+  double a_v = 0.0;          // > 0: k_c = σ0 f_λ(λ̄f) / a_v (5.39, Tang et al. 2009), Pa
+  double k_e = 5.0;          // force–velocity shape (3.29)
+  double d = 1.5;            // eccentric offset (3.29)
+  double v_max = 17.0;       // maximal shortening rate, 1/s: -λ̇min (3.29) or λ̇m0 (5.39)
+  ActivationCurve activation;
+  bool frozen_ce_tangent = false;
+  bool explicit_lag = false;
+};
+
+struct FibreResponse {
+  bool ok = false;          // false: the local solve failed (trial history = committed)
+  double sigma_see = 0.0;   // σ_SEE = σ_CE, Pa
+  double sigma_pe = 0.0;    // σ_PE, Pa
+  double dsigma_see = 0.0;  // dσ_SEE/dλ̄f, Pa (consistent or frozen-CE)
+  double dsigma_pe = 0.0;   // dσ_PE/dλ̄f, Pa
+  int iterations = 0;       // local Newton iterations (0 when no solve was needed)
+};
+
+class HillFibre {
+ public:
+  explicit HillFibre(const HillFibreParameters& p) : p_(p) {}
+
+  const HillFibreParameters& parameters() const { return p_; }
+  // Undeformed, unactivated point: λs = λm = λ̄f = 1, Δλm = 0.
+  void initial_history(std::span<double> history) const;
+  // Activation level f_t(t) (3.26–3.27 or the chapter-5 ramp).
+  double activation(double time) const { return p_.activation(time); }
+  // σ_PE = σ0 A (λ̄f - 1)² for λ̄f > 1, else 0 (3.40–3.41); Pa. Writes dσ_PE/dλ̄f to *slope.
+  double parallel_stress(double lambda_f, double* slope = nullptr) const;
+  // σ_SEE = β[exp(α(λs - 1)) - 1] (3.23) from a history; Pa.
+  double series_stress(std::span<const double> history) const;
+
+  // One step to time `time` (= t + Δt) with step dt and stretch lambda_f = λ̄f^(t+Δt). Reads the
+  // committed history, writes the trial history (both kHillHistorySize long, may not alias).
+  // dsigma_* are computed only when tangent is true.
+  FibreResponse update(double lambda_f, double time, double dt, std::span<const double> history,
+                       std::span<double> trial, bool tangent) const;
+
+ private:
+  HillFibreParameters p_;
+};
+
+}  // namespace isomuscle::materials

@@ -1,0 +1,134 @@
+#pragma once
+// Newton–Raphson for r(u) = 0 on a NonlinearProblem, with a backtracking line search:
+//
+//   K(u_k) du_k = -r(u_k),   u_{k+1} = u_k + alpha_k du_k,
+//   alpha_k = 2^-m, the first m = 0, 1, ... with evaluate(u_k + alpha du_k) ok and (Armijo on the
+//   merit 1/2 |r|^2, for which du_k is a descent direction of slope -|r_k|^2)
+//   |r(u_k + alpha du_k)| <= (1 - c alpha) |r(u_k)|.
+//
+// A trial state whose evaluation fails (J <= 0, a failed local material solve) is rejected like one
+// that does not decrease the residual, so the step is halved away from inverted elements.
+//
+// Convergence needs both (the residual and energy criteria of Bathe, Finite Element Procedures):
+//   residual  |r_k| <= max(rtol |r_0|, atol)
+//   energy    E_k = |du_k . r_{k-1}| <= max(etol E_1, eatol)   (the correction times the residual
+//             it was computed from; E scales with |r|^2, so etol ~ rtol^2 to 1e4 rtol^2)
+// The residual is evaluated before the tangent: a trial state is evaluated without tangent and
+// the tangent is assembled only when another iteration follows.
+//
+// For each iteration the history keeps |r_k|, E_k, alpha_k, the contraction |r_k| / |r_{k-1}|, the
+// quadratic ratio |r_k| / |r_{k-1}|^2 (bounded for quadratic convergence) and the observed order
+// log(|r_k| / |r_{k-1}|) / log(|r_{k-1}| / |r_{k-2}|) (tends to 2).
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "solver/linear_solver.hpp"
+#include "solver/nonlinear_problem.hpp"
+
+namespace isomuscle::solver {
+
+struct NewtonSettings {
+  int max_iterations = 20;
+  double relative_residual_tolerance = 1e-8;  // rtol, of |r_0| at the start of the solve
+  double absolute_residual_tolerance = 0.0;   // atol, residual units (e.g. N): the floor
+  double relative_energy_tolerance = 1e-12;   // etol, of E_1
+  double absolute_energy_tolerance = 0.0;     // eatol, energy units (e.g. N mm): the floor
+  bool line_search = true;
+  int max_line_search_halvings = 10;  // smallest step 2^-10
+  double armijo_coefficient = 1e-4;   // c in (0, 1)
+  // Without line search: stop when |r_k| > divergence_factor * |r_0|.
+  double divergence_factor = 1e6;
+  LinearSolverSettings linear;
+
+  // Throws SettingError naming the bad setting.
+  void validate() const;
+};
+
+enum class NewtonStop {
+  Converged,
+  MaxIterations,
+  LineSearchFailed,    // no step 2^-m, m <= max halvings, reduced |r| (states evaluated fine)
+  EvaluationFailed,    // the problem could not be evaluated (at u_0, or at every trial step)
+  LinearSolverFailed,  // singular tangent, or non-finite entries
+  Diverged,            // |r| grew past divergence_factor |r_0| (no line search)
+};
+// "converged", "too many iterations", ...
+std::string to_string(NewtonStop stop);
+
+struct NewtonIteration {
+  int iteration = 0;               // k, 1-based
+  double residual_norm = 0.0;      // |r_k| after the step
+  double relative_residual = 0.0;  // |r_k| / |r_0|
+  double energy = 0.0;             // E_k = |du_k . r_{k-1}|
+  double relative_energy = 0.0;    // E_k / E_1
+  double step_length = 1.0;        // alpha_k
+  int line_search_halvings = 0;    // m
+  double contraction = 0.0;        // |r_k| / |r_{k-1}|
+  double quadratic_ratio = 0.0;    // |r_k| / |r_{k-1}|^2
+  double observed_order = 0.0;     // NaN for k = 1 (needs three residuals)
+  LinearMethod linear_method = LinearMethod::None;
+  bool lu_fallback = false;  // Cholesky failed, LU used
+  double rcond = 0.0;        // of the factorisation used
+};
+
+struct NewtonResult {
+  bool converged = false;
+  NewtonStop stop = NewtonStop::MaxIterations;
+  std::string message;  // the outcome in words, with the numbers that decided it
+  int iterations = 0;   // Newton corrections applied
+  double initial_residual_norm = 0.0;
+  double final_residual_norm = 0.0;
+  int residual_evaluations = 0;  // evaluate() calls without tangent
+  int tangent_evaluations = 0;   // evaluate() calls with tangent
+  int factorizations = 0;        // successful factorisations of the tangent
+  int lu_fallbacks = 0;
+  // Smallest rcond of this solve's factorisations; 0 after a failed one, 1 (neutral for a minimum
+  // over steps) when none was needed.
+  double min_rcond = 1.0;
+  std::vector<NewtonIteration> history;
+};
+
+// Totals over the lifetime of a NewtonSolver (for the run summary).
+struct NewtonStatistics {
+  int solves = 0;
+  int converged_solves = 0;
+  int iterations = 0;
+  int residual_evaluations = 0;
+  int tangent_evaluations = 0;
+  double residual_seconds = 0.0;  // in evaluate() without tangent
+  double tangent_seconds = 0.0;   // in evaluate() with tangent
+};
+
+class NewtonSolver {
+ public:
+  // Validates the settings (SettingError).
+  explicit NewtonSolver(NewtonSettings settings = {});
+
+  // Solves r(u) = 0 from the initial guess u (size problem.size()). On return u holds the last
+  // accepted iterate: the solution when converged. The same SparseMatrix object is passed as the
+  // tangent at every call of one solver, so a problem may keep its pattern there and overwrite
+  // only the values. Throws std::invalid_argument when u has the wrong size.
+  NewtonResult solve(NonlinearProblem& problem, Eigen::VectorXd& u);
+
+  const NewtonSettings& settings() const { return settings_; }
+  const NewtonStatistics& statistics() const { return statistics_; }
+  const LinearSolver& linear_solver() const { return linear_solver_; }
+
+ private:
+  // evaluate() with timing, counting and a check that an ok residual is finite.
+  EvaluationStatus evaluate(NonlinearProblem& problem, const Eigen::VectorXd& u, Eigen::VectorXd& r,
+                            bool with_tangent, NewtonResult& result);
+
+  NewtonSettings settings_;
+  LinearSolver linear_solver_;
+  NewtonStatistics statistics_;
+  SparseMatrix tangent_;
+  Eigen::VectorXd residual_;
+  Eigen::VectorXd trial_u_;
+  Eigen::VectorXd trial_residual_;
+  Eigen::VectorXd rhs_;
+  Eigen::VectorXd du_;
+};
+
+}  // namespace isomuscle::solver

@@ -1,0 +1,258 @@
+// CHOLMOD Cholesky with UMFPACK fallback: residual of an SPD elasticity solve (~10^4 unknowns),
+// symbolic analysis reused, indefinite matrix -> LU fallback recorded, singular -> failure.
+#include "solver/linear_solver.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <iostream>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include "solver/setting_error.hpp"
+#include "tests/solver/elasticity_fixture.hpp"
+
+namespace isomuscle::solver {
+namespace {
+
+Eigen::VectorXd random_vector(Eigen::Index n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  Eigen::VectorXd v(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    v[i] = value(rng);
+  }
+  return v;
+}
+
+// |A x - b| / |b| with A given by its upper triangle (or in full).
+double relative_residual(const SparseMatrix& a, MatrixStorage storage, const Eigen::VectorXd& x,
+                         const Eigen::VectorXd& b) {
+  const Eigen::VectorXd ax = storage == MatrixStorage::Upper
+                                 ? Eigen::VectorXd(a.selfadjointView<Eigen::Upper>() * x)
+                                 : Eigen::VectorXd(a * x);
+  return (ax - b).norm() / b.norm();
+}
+
+TEST(LinearSolver, CholeskySolvesElasticityAndReusesTheAnalysis) {
+  // 15^3 trilinear hexahedra: 11520 free DOFs.
+  const testing::ElasticitySystem system = testing::make_elasticity({15, 1});
+  SparseMatrix k = system.stiffness;
+  ASSERT_EQ(k.rows(), 11520);
+  LinearSolver solver;
+  for (int call = 0; call < 3; ++call) {
+    // A different matrix with the same pattern each call (a Newton iteration's new tangent).
+    Eigen::Map<Eigen::VectorXd>(k.valuePtr(), k.nonZeros()) =
+        (1.0 + 0.5 * call) *
+        Eigen::Map<const Eigen::VectorXd>(system.stiffness.valuePtr(), k.nonZeros());
+    const FactorizationReport report = solver.factorize(k);
+    ASSERT_TRUE(report.ok) << report.message;
+    EXPECT_EQ(report.method, LinearMethod::Cholesky);
+    EXPECT_FALSE(report.fell_back);
+    EXPECT_GT(report.rcond, 0.0);
+    EXPECT_LT(report.rcond, 1.0);
+    const Eigen::VectorXd b = random_vector(k.rows(), 10 + call);
+    Eigen::VectorXd x;
+    solver.solve(b, x);
+    EXPECT_LE(relative_residual(k, MatrixStorage::Upper, x, b), 1e-10);
+  }
+  const LinearSolverStatistics& stats = solver.statistics();
+  std::cout << "n = " << k.rows() << ", nnz(upper) = " << k.nonZeros()
+            << ", nnz(L) = " << solver.cholesky().factor_nonzeros() << " ("
+            << solver.cholesky().ordering_used() << "), symbolic " << stats.time.symbolic
+            << " s, 3 numeric " << stats.time.numeric << " s, 3 solves " << stats.time.solve
+            << " s\n";
+  EXPECT_EQ(stats.symbolic_analyses, 1);
+  EXPECT_EQ(stats.pattern_changes, 0);
+  EXPECT_EQ(stats.cholesky_factorizations, 3);
+  EXPECT_EQ(stats.cholesky_failures, 0);
+  EXPECT_EQ(stats.lu_factorizations, 0);
+  EXPECT_EQ(stats.solves, 3);
+  EXPECT_GT(stats.time.symbolic, 0.0);
+  EXPECT_GT(stats.time.numeric, 0.0);
+  EXPECT_GT(stats.time.solve, 0.0);
+  EXPECT_GT(solver.cholesky().factor_nonzeros(), static_cast<double>(k.nonZeros()));
+  EXPECT_NE(solver.cholesky().ordering_used(), "none");
+
+  // A different pattern is analysed again.
+  const testing::ElasticitySystem other = testing::make_elasticity({4, 2});
+  ASSERT_TRUE(solver.factorize(other.stiffness).ok);
+  EXPECT_EQ(solver.statistics().symbolic_analyses, 2);
+  EXPECT_EQ(solver.statistics().pattern_changes, 1);
+}
+
+TEST(LinearSolver, FullStorageSymmetricMatrixGivesTheSameSolution) {
+  const testing::ElasticitySystem upper = testing::make_elasticity({6, 2});
+  const testing::ElasticitySystem full = testing::make_elasticity({6, 2}, MatrixStorage::Full);
+  LinearSolver upper_solver;
+  LinearSolver full_solver(LinearSolverSettings{MatrixStorage::Full, LinearMethod::Cholesky, true,
+                                                CholeskyOrdering::Amd});
+  ASSERT_TRUE(upper_solver.factorize(upper.stiffness).ok);
+  ASSERT_TRUE(full_solver.factorize(full.stiffness).ok);
+  EXPECT_EQ(full_solver.cholesky().ordering_used(), "AMD");
+  const Eigen::VectorXd b = random_vector(upper.stiffness.rows(), 3);
+  Eigen::VectorXd x_upper;
+  Eigen::VectorXd x_full;
+  upper_solver.solve(b, x_upper);
+  full_solver.solve(b, x_full);
+  EXPECT_LE(relative_residual(full.stiffness, MatrixStorage::Full, x_full, b), 1e-10);
+  EXPECT_LE((x_upper - x_full).norm(), 1e-9 * x_upper.norm());
+}
+
+TEST(LinearSolver, LuAloneSolvesAnUpperStoredSymmetricMatrix) {
+  // The scene's "umfpack" choice: LU of the upper-stored tangent, expanded to both triangles.
+  const testing::ElasticitySystem system = testing::make_elasticity({6, 1});
+  LinearSolverSettings settings;
+  settings.method = LinearMethod::Lu;
+  LinearSolver solver(settings);
+  for (int call = 0; call < 2; ++call) {
+    const FactorizationReport report = solver.factorize(system.stiffness);
+    ASSERT_TRUE(report.ok) << report.message;
+    EXPECT_EQ(report.method, LinearMethod::Lu);
+    EXPECT_FALSE(report.fell_back);
+    const Eigen::VectorXd b = random_vector(system.stiffness.rows(), 21 + call);
+    Eigen::VectorXd x;
+    solver.solve(b, x);
+    EXPECT_LE(relative_residual(system.stiffness, MatrixStorage::Upper, x, b), 1e-10);
+  }
+  EXPECT_EQ(solver.statistics().symbolic_analyses, 0);
+  EXPECT_EQ(solver.statistics().lu_symbolic_analyses, 1);
+  EXPECT_EQ(solver.statistics().lu_factorizations, 2);
+  EXPECT_EQ(solver.statistics().lu_fallbacks, 0);
+}
+
+TEST(LinearSolver, IndefiniteMatrixFallsBackToLuAndStillSolves) {
+  const testing::ElasticitySystem system = testing::make_elasticity({8, 1});
+  SparseMatrix k = system.stiffness;
+  LinearSolver solver;
+  ASSERT_TRUE(solver.factorize(k).ok);
+  // K - sigma I with sigma between the eigenvalues: symmetric indefinite (e.g. past a limit point).
+  const double sigma = 0.5 * k.diagonal().mean();
+  for (int j = 0; j < k.cols(); ++j) {
+    k.coeffRef(j, j) -= sigma;
+  }
+  const FactorizationReport report = solver.factorize(k);
+  ASSERT_TRUE(report.ok) << report.message;
+  EXPECT_EQ(report.method, LinearMethod::Lu);
+  EXPECT_TRUE(report.fell_back);
+  EXPECT_NE(report.message.find("not positive definite"), std::string::npos) << report.message;
+  EXPECT_GT(report.rcond, 0.0);
+  const Eigen::VectorXd b = random_vector(k.rows(), 5);
+  Eigen::VectorXd x;
+  solver.solve(b, x);
+  EXPECT_LE(relative_residual(k, MatrixStorage::Upper, x, b), 1e-10);
+  // The Cholesky factor is usable again after the failure (same pattern, no new analysis).
+  ASSERT_TRUE(solver.factorize(system.stiffness).ok);
+  EXPECT_EQ(solver.last_report().method, LinearMethod::Cholesky);
+  solver.solve(b, x);
+  EXPECT_LE(relative_residual(system.stiffness, MatrixStorage::Upper, x, b), 1e-10);
+
+  const LinearSolverStatistics& stats = solver.statistics();
+  EXPECT_EQ(stats.cholesky_factorizations, 3);
+  EXPECT_EQ(stats.cholesky_failures, 1);
+  EXPECT_EQ(stats.lu_fallbacks, 1);
+  EXPECT_EQ(stats.lu_factorizations, 1);
+  EXPECT_EQ(stats.lu_symbolic_analyses, 1);
+  EXPECT_EQ(stats.symbolic_analyses, 1);
+  EXPECT_EQ(stats.failures, 0);
+}
+
+TEST(LinearSolver, WithoutFallbackAnIndefiniteMatrixIsAFailure) {
+  SparseMatrix k(2, 2);
+  k.insert(0, 0) = 1.0;
+  k.insert(0, 1) = 2.0;
+  k.insert(1, 1) = 1.0;
+  k.makeCompressed();
+  LinearSolverSettings settings;
+  settings.lu_fallback = false;
+  LinearSolver solver(settings);
+  const FactorizationReport report = solver.factorize(k);
+  EXPECT_FALSE(report.ok);
+  EXPECT_NE(report.message.find("fallback disabled"), std::string::npos) << report.message;
+  Eigen::VectorXd x;
+  EXPECT_THROW(solver.solve(Eigen::Vector2d(1.0, 0.0), x), std::logic_error);
+  EXPECT_EQ(solver.statistics().failures, 1);
+}
+
+TEST(LinearSolver, SingularMatrixIsAFailureWithAMessage) {
+  // [[1, 1], [1, 1]]: Cholesky stops at the zero pivot, LU finds the matrix singular.
+  SparseMatrix k(2, 2);
+  k.insert(0, 0) = 1.0;
+  k.insert(0, 1) = 1.0;
+  k.insert(1, 1) = 1.0;
+  k.makeCompressed();
+  LinearSolver solver;
+  const FactorizationReport report = solver.factorize(k);
+  EXPECT_FALSE(report.ok);
+  EXPECT_NE(report.message.find("singular"), std::string::npos) << report.message;
+  EXPECT_EQ(solver.statistics().cholesky_failures, 1);
+  EXPECT_EQ(solver.statistics().failures, 1);
+  Eigen::VectorXd x;
+  EXPECT_THROW(solver.solve(Eigen::Vector2d(1.0, 0.0), x), std::logic_error);
+}
+
+TEST(LinearSolver, NonSymmetricMatrixIsSolvedByLu) {
+  // A convection–diffusion-like tridiagonal matrix, stored in full.
+  const int n = 200;
+  SparseMatrix a(n, n);
+  for (int i = 0; i < n; ++i) {
+    a.insert(i, i) = 2.0;
+    if (i > 0) {
+      a.insert(i, i - 1) = -1.3;
+    }
+    if (i + 1 < n) {
+      a.insert(i, i + 1) = -0.7;
+    }
+  }
+  a.makeCompressed();
+  LinearSolver solver(
+      LinearSolverSettings{MatrixStorage::Full, LinearMethod::Lu, true, CholeskyOrdering::Default});
+  const FactorizationReport report = solver.factorize(a);
+  ASSERT_TRUE(report.ok) << report.message;
+  EXPECT_EQ(report.method, LinearMethod::Lu);
+  EXPECT_FALSE(report.fell_back);
+  const Eigen::VectorXd b = random_vector(n, 9);
+  Eigen::VectorXd x;
+  solver.solve(b, x);
+  EXPECT_LE(relative_residual(a, MatrixStorage::Full, x, b), 1e-12);
+  EXPECT_EQ(solver.statistics().symbolic_analyses, 0);
+  EXPECT_EQ(solver.statistics().lu_symbolic_analyses, 1);
+}
+
+TEST(LinearSolver, BadInputIsReportedClearly) {
+  // Non-finite entries: a failure naming the entry, not a crash.
+  SparseMatrix k(2, 2);
+  k.insert(0, 0) = 1.0;
+  k.insert(1, 1) = std::nan("");
+  k.makeCompressed();
+  LinearSolver solver;
+  const FactorizationReport report = solver.factorize(k);
+  EXPECT_FALSE(report.ok);
+  EXPECT_NE(report.message.find("non-finite entry nan at (1, 1)"), std::string::npos)
+      << report.message;
+
+  // Entries below the diagonal with Upper storage.
+  SparseMatrix lower(2, 2);
+  lower.insert(0, 0) = 2.0;
+  lower.insert(1, 0) = 1.0;
+  lower.insert(1, 1) = 2.0;
+  lower.makeCompressed();
+  EXPECT_THROW(LinearSolver().factorize(lower), std::invalid_argument);
+
+  SparseMatrix uncompressed(2, 2);
+  uncompressed.insert(0, 0) = 1.0;
+  EXPECT_THROW(LinearSolver().factorize(uncompressed), std::invalid_argument);
+
+  try {
+    LinearSolver(LinearSolverSettings{MatrixStorage::Upper, LinearMethod::None, true,
+                                      CholeskyOrdering::Default});
+    FAIL() << "method none was accepted";
+  } catch (const SettingError& error) {
+    EXPECT_EQ(error.key(), "method");
+  }
+}
+
+}  // namespace
+}  // namespace isomuscle::solver

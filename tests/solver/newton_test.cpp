@@ -1,0 +1,232 @@
+// Newton–Raphson: the exact discrete solution of a nonlinear reaction–diffusion problem, quadratic
+// convergence observed in the logged residuals, line search rescuing a problem plain Newton
+// overshoots, evaluation failures rejected by halving, and the failure reasons.
+#include "solver/newton.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+
+#include "solver/setting_error.hpp"
+#include "tests/solver/test_problems.hpp"
+
+namespace isomuscle::solver {
+namespace {
+
+void print_history(const NewtonResult& result) {
+  for (const NewtonIteration& it : result.history) {
+    std::cout << "  k=" << it.iteration << " |r|/|r0|=" << it.relative_residual
+              << " E/E1=" << it.relative_energy << " alpha=" << it.step_length
+              << " |r_k|/|r_k-1|^2=" << it.quadratic_ratio << " order=" << it.observed_order
+              << "\n";
+  }
+  std::cout << "  " << result.message << "\n";
+}
+
+TEST(NewtonTestProblem, TangentMatchesFiniteDifferences) {
+  testing::ReactionDiffusionProblem problem(8, 50.0, 2.0);
+  problem.load_factor = 0.7;
+  const Eigen::VectorXd u = 0.6 * problem.exact() + 0.1 * Eigen::VectorXd::Ones(problem.size());
+  Eigen::VectorXd r;
+  SparseMatrix k;
+  ASSERT_TRUE(problem.evaluate(u, r, &k).ok);
+  const Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(problem.size(), -1.0, 1.0);
+  const double eps = 1e-6;
+  Eigen::VectorXd r_plus;
+  Eigen::VectorXd r_minus;
+  ASSERT_TRUE(problem.evaluate(u + eps * v, r_plus, nullptr).ok);
+  ASSERT_TRUE(problem.evaluate(u - eps * v, r_minus, nullptr).ok);
+  const Eigen::VectorXd fd = (r_plus - r_minus) / (2.0 * eps);
+  const Eigen::VectorXd kv = k.selfadjointView<Eigen::Upper>() * v;
+  EXPECT_LE((kv - fd).norm(), 1e-8 * kv.norm());
+}
+
+TEST(Newton, FindsTheExactDiscreteSolutionWithQuadraticConvergence) {
+  testing::ReactionDiffusionProblem problem(30, 50.0, 2.0);
+  NewtonSettings settings;
+  settings.relative_residual_tolerance = 1e-13;
+  settings.relative_energy_tolerance = 1e-24;
+  NewtonSolver newton(settings);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
+  const NewtonResult result = newton.solve(problem, u);
+  print_history(result);
+  ASSERT_TRUE(result.converged) << result.message;
+  EXPECT_EQ(result.stop, NewtonStop::Converged);
+  EXPECT_LE((u - problem.exact()).norm(), 1e-11 * problem.exact().norm());
+  ASSERT_EQ(static_cast<int>(result.history.size()), result.iterations);
+
+  // Quadratic convergence: over the last iterations above round-off, |r_k| / |r_{k-1}|^2 stays
+  // bounded and the observed order log(|r_k|/|r_k-1|) / log(|r_k-1|/|r_k-2|) approaches 2.
+  int checked = 0;
+  for (const NewtonIteration& it : result.history) {
+    const bool asymptotic = it.iteration >= 3 && it.relative_residual < 1e-2 &&
+                            it.relative_residual > 1e-13 && it.step_length == 1.0;
+    if (asymptotic) {
+      EXPECT_GT(it.observed_order, 1.8) << "iteration " << it.iteration;
+      EXPECT_LT(it.observed_order, 2.5) << "iteration " << it.iteration;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 2);
+
+  // Every iteration used Cholesky; statistics add up.
+  for (const NewtonIteration& it : result.history) {
+    EXPECT_EQ(it.linear_method, LinearMethod::Cholesky);
+    EXPECT_GT(it.rcond, 0.0);
+  }
+  EXPECT_EQ(newton.linear_solver().statistics().symbolic_analyses, 1);
+  EXPECT_EQ(newton.linear_solver().statistics().cholesky_factorizations, result.iterations);
+  EXPECT_EQ(result.tangent_evaluations, result.iterations);  // the last accepted state needs none
+  EXPECT_EQ(newton.statistics().iterations, result.iterations);
+  EXPECT_EQ(problem.evaluations, result.residual_evaluations + result.tangent_evaluations);
+  EXPECT_EQ(result.factorizations, result.iterations);
+  EXPECT_EQ(result.lu_fallbacks, 0);
+  EXPECT_GT(result.min_rcond, 0.0);
+  EXPECT_LT(result.min_rcond, 1.0);
+}
+
+TEST(Newton, IndefiniteTangentsAreFactorisedByLuAndCounted) {
+  testing::DoubleWellChainProblem problem(40, 0.05);
+  Eigen::VectorXd u = 0.2 * Eigen::VectorXd::LinSpaced(problem.size(), 0.5, 1.0);
+  NewtonSettings settings;
+  settings.absolute_residual_tolerance = 1e-14;
+  NewtonSolver newton(settings);
+  const NewtonResult result = newton.solve(problem, u);
+  print_history(result);
+  ASSERT_TRUE(result.converged) << result.message;
+  EXPECT_LE(u.norm(), 1e-12);  // the solution u = 0
+  EXPECT_EQ(result.lu_fallbacks, result.iterations);
+  for (const NewtonIteration& it : result.history) {
+    EXPECT_TRUE(it.lu_fallback);
+    EXPECT_EQ(it.linear_method, LinearMethod::Lu);
+  }
+  const LinearSolverStatistics& stats = newton.linear_solver().statistics();
+  EXPECT_EQ(stats.lu_fallbacks, result.iterations);
+  EXPECT_EQ(stats.cholesky_failures, result.iterations);
+  EXPECT_EQ(stats.symbolic_analyses, 1);
+  EXPECT_EQ(stats.lu_symbolic_analyses, 1);
+}
+
+TEST(Newton, LineSearchRescuesAProblemPlainNewtonOvershoots) {
+  testing::AtanChainProblem problem(50, 0.05);
+  NewtonSettings plain_settings;
+  plain_settings.line_search = false;
+  plain_settings.max_iterations = 30;
+  NewtonSolver plain(plain_settings);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
+  const NewtonResult overshoot = plain.solve(problem, u);
+  std::cout << "plain Newton: " << overshoot.message << "\n";
+  EXPECT_FALSE(overshoot.converged);
+  ASSERT_GE(overshoot.history.size(), 1u);
+  EXPECT_GT(overshoot.history.front().residual_norm, overshoot.initial_residual_norm);
+
+  NewtonSolver damped;
+  u.setZero();
+  const NewtonResult result = damped.solve(problem, u);
+  print_history(result);
+  ASSERT_TRUE(result.converged) << result.message;
+  EXPECT_LT(result.history.front().step_length, 1.0);
+  EXPECT_GT(result.history.front().line_search_halvings, 0);
+  EXPECT_EQ(result.history.back().step_length, 1.0);
+  Eigen::VectorXd r;
+  ASSERT_TRUE(problem.evaluate(u, r, nullptr).ok);
+  EXPECT_LE(r.norm(), 1e-8 * result.initial_residual_norm);
+}
+
+TEST(Newton, TrialStatesThatCannotBeEvaluatedAreHalvedAway) {
+  // The first full Newton step from 0 (the linear solution) overshoots the cubic problem's
+  // solution (max 2) past the failure bound 3.
+  testing::ReactionDiffusionProblem problem(12, 50.0, 2.0);
+  problem.failure_bound = 3.0;
+  NewtonSolver newton;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
+  const NewtonResult result = newton.solve(problem, u);
+  print_history(result);
+  ASSERT_TRUE(result.converged) << result.message;
+  EXPECT_GT(result.history.front().line_search_halvings, 0);
+  EXPECT_LE((u - problem.exact()).norm(), 1e-7 * problem.exact().norm());
+
+  // Without line search the same overshoot is an evaluation failure naming the place.
+  NewtonSettings plain;
+  plain.line_search = false;
+  NewtonSolver plain_newton(plain);
+  u.setZero();
+  const NewtonResult failed = plain_newton.solve(problem, u);
+  EXPECT_FALSE(failed.converged);
+  EXPECT_EQ(failed.stop, NewtonStop::EvaluationFailed);
+  EXPECT_NE(failed.message.find("exceeds 3"), std::string::npos) << failed.message;
+  EXPECT_NE(failed.message.find("line search off"), std::string::npos) << failed.message;
+}
+
+TEST(Newton, ReportsWhyItStopped) {
+  testing::ReactionDiffusionProblem problem(10, 50.0, 2.0);
+  NewtonSettings settings;
+  settings.max_iterations = 2;
+  NewtonSolver newton(settings);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
+  NewtonResult result = newton.solve(problem, u);
+  EXPECT_EQ(result.stop, NewtonStop::MaxIterations);
+  EXPECT_NE(result.message.find("not converged in 2 iterations"), std::string::npos)
+      << result.message;
+
+  // Initial guess outside the evaluable region.
+  problem.failure_bound = 1.0;
+  u.setConstant(5.0);
+  result = newton.solve(problem, u);
+  EXPECT_EQ(result.stop, NewtonStop::EvaluationFailed);
+  EXPECT_NE(result.message.find("initial guess"), std::string::npos) << result.message;
+
+  // Already in equilibrium: no iteration, no factorisation.
+  problem.failure_bound = 1e300;
+  u = problem.exact();
+  NewtonSettings floor_settings;
+  floor_settings.absolute_residual_tolerance = 1e-9;
+  NewtonSolver floor_newton(floor_settings);
+  result = floor_newton.solve(problem, u);
+  EXPECT_TRUE(result.converged) << result.message;
+  EXPECT_EQ(result.iterations, 0);
+  EXPECT_EQ(result.factorizations, 0);
+  EXPECT_EQ(result.min_rcond, 1.0);
+
+  Eigen::VectorXd wrong_size = Eigen::VectorXd::Zero(3);
+  EXPECT_THROW(newton.solve(problem, wrong_size), std::invalid_argument);
+}
+
+TEST(Newton, SettingsAreValidated) {
+  const auto key_of = [](NewtonSettings settings) {
+    try {
+      NewtonSolver solver(settings);
+    } catch (const SettingError& error) {
+      return error.key();
+    }
+    return std::string("accepted");
+  };
+  NewtonSettings s;
+  s.max_iterations = 0;
+  EXPECT_EQ(key_of(s), "max_iterations");
+  s = {};
+  s.relative_residual_tolerance = -1.0;
+  EXPECT_EQ(key_of(s), "relative_residual_tolerance");
+  s = {};
+  s.relative_residual_tolerance = 0.0;
+  EXPECT_EQ(key_of(s), "relative_residual_tolerance");
+  s = {};
+  s.armijo_coefficient = 1.0;
+  EXPECT_EQ(key_of(s), "armijo_coefficient");
+  s = {};
+  s.absolute_energy_tolerance = std::nan("");
+  EXPECT_EQ(key_of(s), "absolute_energy_tolerance");
+  s = {};
+  s.divergence_factor = 0.5;
+  EXPECT_EQ(key_of(s), "divergence_factor");
+  s = {};
+  s.linear.method = LinearMethod::None;
+  EXPECT_EQ(key_of(s), "method");
+  EXPECT_EQ(key_of(NewtonSettings{}), "accepted");
+}
+
+}  // namespace
+}  // namespace isomuscle::solver
