@@ -15,4 +15,8 @@ void basis_functions(const KnotVector& kv, int span, double u, double* out);
 // out[k * (p + 1) + j] = d^k N_{span-p+j,p} / du^k (u), k = 0..n. No heap allocation.
 void basis_derivatives(const KnotVector& kv, int span, double u, int n, double* out);
 
+// Values and first derivatives only, same layout as basis_derivatives with n = 1 (out[0..p] values,
+// out[p+1..2p+1] derivatives), cheaper than the general recursion: the hot path of volumes.
+void basis_first_derivatives(const KnotVector& kv, int span, double u, double* out);
+
 }  // namespace isomuscle::geometry

@@ -1,6 +1,7 @@
 #pragma once
-// Non-uniform rational B-spline surface S(u,v) = sum_ij N_i(u) N_j(v) w_ij P_ij / sum_ij N_i N_j w_ij
-// (thesis 5.11). Control points are stored Cartesian with separate weights; index i + n_u * j.
+// Non-uniform rational B-spline surface (thesis 5.11):
+//   S(u,v) = sum_ij N_i(u) N_j(v) w_ij P_ij / sum_ij N_i(u) N_j(v) w_ij.
+// Control points are stored Cartesian with separate weights; index i + n_u * j.
 #include <Eigen/Core>
 #include <vector>
 

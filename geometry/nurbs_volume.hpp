@@ -3,6 +3,7 @@
 // points are stored Cartesian with separate weights; global index i + n_u * (j + n_v * k).
 #include <Eigen/Core>
 #include <array>
+#include <utility>
 #include <vector>
 
 #include "geometry/knot_vector.hpp"
