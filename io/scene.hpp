@@ -1,0 +1,186 @@
+#pragma once
+// The scene schema: everything a run needs, one struct per TOML table (after deal.II step-44's
+// parameter structs), each with its defaults and a validate() that checks the values and their
+// consistency and throws InvalidSetting naming the key. scene_loader.hpp fills these structs from
+// a file and reports errors with line numbers; programs and tests may build them directly.
+//
+// Units are SI (m, s, Pa); parametric coordinates are in [0, 1] per direction of the NURBS solid,
+// whose w = 0 face is the boundary surface and w = 1 the collapsed centreline (SPEC section 1).
+#include <Eigen/Core>
+#include <array>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace isomuscle::io {
+
+// Parametric directions of the solid H(u, v, w).
+enum class Direction { u, v, w };
+// The six faces of the parameter cube: u0 is {u = 0}, u1 is {u = 1}, ... (G+Smo's west/east...).
+enum class Face { u0, u1, v0, v1, w0, w1 };
+
+const char* to_string(Direction d);
+const char* to_string(Face f);
+// Lower-case names as written in scenes; parse_* throw InvalidSetting(key, ...) for other names.
+Direction parse_direction(const std::string& key, const std::string& name);
+Face parse_face(const std::string& key, const std::string& name);
+std::vector<std::string> face_names();
+
+// [geometry.refine]: exact refinement of the NURBS solid before analysis (SPEC section 1).
+struct RefinementSettings {
+  std::array<int, 3> degree_elevation{0, 0, 0};  // degree raised by this much in u, v, w
+  std::array<int, 3> knot_insertion{0, 0, 0};    // new knots per existing knot span in u, v, w
+  void validate() const;
+};
+
+// [geometry]: where the solid comes from.
+struct GeometrySettings {
+  std::filesystem::path iges;           // IGES file; a scene gives it relative to the scene file
+  int surface = 0;                      // index of the B-spline surface in the file
+  Direction centreline = Direction::v;  // parametric direction of the surface along the muscle
+  RefinementSettings refine;
+  void validate() const;  // also checks that the IGES file exists
+};
+
+// [material] with [material.parameters]: a law of materials::material_models() and values for
+// any of its parameters (the rest take the defaults of materials::material_parameters(model)).
+struct MaterialSettings {
+  std::string model;
+  std::map<std::string, double> parameters;
+  void validate() const;  // model name, parameter names and ranges through the material factory
+};
+
+// [fibres]: the undeformed fibre direction field (thesis 5.27-5.30 and its comparison modes).
+enum class FibreMode {
+  isocurve,  // tangent of the parametric isocurve in `direction` (thesis 5.29)
+  constant,  // one direction `vector` everywhere (e.g. z)
+  segments,  // body cut into `segments` pieces along `direction`, one chord direction each
+  line,      // the straight line from `origin` to `insertion` (LS-DYNA P25-P30)
+};
+const char* to_string(FibreMode m);
+
+struct FibreSettings {
+  FibreMode mode = FibreMode::isocurve;
+  // isocurve and segments: parametric direction; a scene that leaves it out gets the centreline.
+  Direction direction = Direction::v;
+  Eigen::Vector3d vector = Eigen::Vector3d::UnitZ();  // constant mode; unit length after loading
+  int segments = 2;                                   // segments mode, >= 1
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();   // line mode, m
+  Eigen::Vector3d insertion = Eigen::Vector3d::UnitZ();
+  void validate() const;
+};
+
+// A set of boundary points: a face of the parameter cube, or every point within tolerance of a
+// plane (for symmetry cuts and meshes without parametric faces).
+struct PlaneSelector {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();    // m
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // unit length after loading
+  double tolerance = 1e-6;                            // m, distance from the plane
+  void validate() const;
+};
+
+struct FaceSelector {
+  std::optional<Face> face;  // exactly one of face and plane
+  std::optional<PlaneSelector> plane;
+  void validate() const;
+};
+
+// [[boundary]]: a Dirichlet condition on a face.
+enum class BoundaryType {
+  fixed,         // the masked components are zero
+  displacement,  // the masked components follow u(t) below
+  symmetry,      // zero displacement along the face normal (plane faces)
+};
+const char* to_string(BoundaryType t);
+
+struct BoundarySettings {
+  FaceSelector where;
+  BoundaryType type = BoundaryType::fixed;
+  std::array<bool, 3> components{true, true, true};    // x, y, z constrained (fixed, displacement)
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // m/s, displacement type
+  Eigen::Vector3d value = Eigen::Vector3d::Zero();     // m, constant part, displacement type
+  double start = 0.0;                                  // s, motion begins
+  double stop = std::numeric_limits<double>::infinity();  // s, motion ends, position then held
+  void validate() const;
+  // u(t) = 0 before start, else value + velocity * (min(t, stop) - start), m.
+  Eigen::Vector3d prescribed_displacement(double time) const;
+};
+
+// [time]: quasi-static time stepping with cut-back.
+struct TimeSettings {
+  double end = 1.0;             // s
+  double dt = 0.01;             // s, first (and, unless adaptive, every) step
+  double dt_min = 0.01 / 1024;  // s, smallest step before the run fails; a scene: dt / 1024
+  double dt_max = 0.01;  // s, largest step an adaptive run grows to; a scene defaults it to dt
+  bool adaptive = true;  // grow the step after easy convergence, not only cut it after failure
+  void validate() const;
+};
+
+// [solver]
+enum class Formulation { mixed, displacement };
+enum class LinearSolverKind { cholmod, umfpack };
+enum class TangentKind { consistent, frozen_ce };
+const char* to_string(Formulation f);
+const char* to_string(LinearSolverKind k);
+const char* to_string(TangentKind k);
+
+struct SolverSettings {
+  Formulation formulation = Formulation::mixed;
+  // Defaults and meaning as solver::NewtonSettings.
+  int newton_max_iterations = 20;
+  double tolerance_residual = 1e-8;  // |r_k| / |r_0|
+  double tolerance_energy = 1e-12;   // E_k / E_1 with E_k = |du_k . r_(k-1)|
+  bool line_search = true;
+  LinearSolverKind linear_solver = LinearSolverKind::cholmod;
+  TangentKind tangent = TangentKind::consistent;
+  int threads = 0;  // 0: every available core
+  void validate() const;
+};
+
+// [output]: fields for ParaView at chosen times.
+struct OutputSettings {
+  std::vector<double> times;  // s, increasing; empty: see every
+  double every = 0.0;         // s between outputs; 0 with empty times: every converged step
+  std::vector<std::string> fields{"displacement", "cauchy_stress", "J"};
+  int samples_per_element = 2;  // tessellation: sub-cells per element edge (IGA)
+  void validate() const;
+  // Output times within the run: times and every at most time.end.
+  void check_within(const TimeSettings& time) const;
+  static const std::vector<std::string>& field_names();
+};
+
+// [[probe]]: a scalar (or a few scalars) recorded every step into probes.csv.
+enum class ProbeKind { point_displacement, face_reaction, volume, stress_parts };
+const char* to_string(ProbeKind k);
+
+struct ProbeSettings {
+  std::string name;  // column name in probes.csv, [A-Za-z0-9_.-]+
+  ProbeKind kind = ProbeKind::volume;
+  std::optional<Eigen::Vector3d> point;  // point_displacement, stress_parts: reference point, m
+  std::optional<Eigen::Vector3d> xi;     // ... or parametric point (u, v, w) in [0, 1]^3
+  std::optional<FaceSelector> face;      // face_reaction
+  std::string component = "magnitude";   // x, y, z or magnitude (point_displacement, reaction)
+  void validate() const;
+  static const std::vector<std::string>& component_names();
+};
+
+struct Scene {
+  std::filesystem::path file;  // the scene file, for messages and relative paths
+  std::string description;
+  GeometrySettings geometry;
+  MaterialSettings material;
+  FibreSettings fibres;
+  std::vector<BoundarySettings> boundaries;
+  TimeSettings time;
+  SolverSettings solver;
+  OutputSettings output;
+  std::vector<ProbeSettings> probes;
+  // Every table's validate(), then what spans tables: output times within [0, time.end], unique
+  // probe names. Throws InvalidSetting with keys like "output.times" or "probe.name".
+  void validate() const;
+};
+
+}  // namespace isomuscle::io
