@@ -6,7 +6,8 @@
 // parameters (lu2010_muscle.hpp, tang2009_muscle.hpp). PointInput::fibre is normalised here (a
 // zero or non-finite fibre throws std::invalid_argument); the history spans must hold
 // kHillHistorySize doubles (else std::invalid_argument). The consistent tangent costs no extra
-// local iterations (one implicit-function-theorem division after the solve).
+// local iterations (one implicit-function-theorem division after each substep's solve, chained
+// through the substeps by forward sensitivity; hill_fibre.hpp).
 #include <string>
 
 #include "materials/hill_fibre.hpp"

@@ -40,6 +40,9 @@ const std::vector<ParameterSpec>& lu2010_parameters() {
                 "0: exponential activation (3.26); > 0: linear rise/decay over ramp_time (ch. 5)"),
       make_flag("frozen_ce_tangent", 0.0,
                 "1: thesis tangent 5.54 (CE length frozen in the step); 0: consistent tangent"),
+      make_spec("substeps", 0.0, 0.0, 1000.0, false, false, "",
+                "CE/SEE update substeps per time step (integer): 0 adaptive (hill_fibre.hpp), "
+                "m >= 1 fixed"),
       make_flag(
           "explicit_lag", 0.0,
           "1: f_lambda and force-velocity branch from the previous step (Fortran); 0: current"),
@@ -75,6 +78,7 @@ std::unique_ptr<MaterialLaw> make_lu2010(const ParameterValues& v) {
   f.activation.ramp_time = v.get("ramp_time");
   f.frozen_ce_tangent = v.flag("frozen_ce_tangent");
   f.explicit_lag = v.flag("explicit_lag");
+  f.substeps = v.integer("substeps");
   return std::make_unique<HillMuscle>(p);
 }
 

@@ -84,6 +84,13 @@ double ParameterValues::get(const std::string& name) const {
   return it->second;
 }
 
+int ParameterValues::integer(const std::string& name) const {
+  const double value = get(name);
+  if (value != std::floor(value) || std::abs(value) > 1e9)
+    fail(name, "is not an integer; valid: a whole number in the parameter's range");
+  return static_cast<int>(value);
+}
+
 void ParameterValues::fail(const std::string& name, const std::string& why) const {
   throw std::invalid_argument("material '" + model_ + "': parameter '" + name +
                               "' = " + number(get(name)) + " " + why);

@@ -28,6 +28,8 @@ class ParameterValues {
   // The given value, or the default; throws std::logic_error for a name not in the specs.
   double get(const std::string& name) const;
   bool flag(const std::string& name) const { return get(name) != 0.0; }
+  // get(name) as an int; throws std::invalid_argument when it is not a whole number.
+  int integer(const std::string& name) const;
   // Throws std::invalid_argument("<model>: parameter '<name>' = <value> ...<why>") (cross checks).
   [[noreturn]] void fail(const std::string& name, const std::string& why) const;
 

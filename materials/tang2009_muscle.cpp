@@ -38,6 +38,9 @@ const std::vector<ParameterSpec>& tang2009_parameters() {
                 "linear rise to full activation over ramp_time (5.6: 0.005 s); 0: exponential"),
       make_flag("frozen_ce_tangent", 0.0,
                 "1: thesis tangent 5.54 (CE length frozen in the step); 0: consistent tangent"),
+      make_spec("substeps", 0.0, 0.0, 1000.0, false, false, "",
+                "CE/SEE update substeps per time step (integer): 0 adaptive (hill_fibre.hpp), "
+                "m >= 1 fixed"),
       make_flag("explicit_lag", 0.0,
                 "1: f_lambda, k_c and force-velocity branch from the previous step; 0: current"),
   };
@@ -72,6 +75,7 @@ std::unique_ptr<MaterialLaw> make_tang2009(const ParameterValues& v) {
   f.activation.ramp_time = v.get("ramp_time");
   f.frozen_ce_tangent = v.flag("frozen_ce_tangent");
   f.explicit_lag = v.flag("explicit_lag");
+  f.substeps = v.integer("substeps");
   return std::make_unique<HillMuscle>(p);
 }
 

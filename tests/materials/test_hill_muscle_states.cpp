@@ -7,6 +7,8 @@
 #include <cmath>
 #include <iostream>
 #include <map>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -57,7 +59,9 @@ double fv_539(double dlm, double dlm0, double kc, double ke, double d) {
   return d - (d - 1.0) * (1.0 - x) / (1.0 + kc * ke * x);
 }
 
-// Thesis 3.5.3: n1 = 0, n2 = 1, t0 = 0.1 s, t1 = 0.4 s, F = I held, fibres along z.
+// Thesis 3.5.3: n1 = 0, n2 = 1, t0 = 0.1 s, t1 = 0.4 s, F = I held, fibres along z. One
+// backward-Euler step per time step (substeps = 1), so that σ_SEE = s f_v(Δλm/Δt) holds over the
+// step.
 void isometric_contraction(const std::string& model, const std::map<std::string, double>& params) {
   const auto owner = make_material(model, params);
   const auto& law = dynamic_cast<const HillMuscle&>(*owner);
@@ -130,11 +134,12 @@ void isometric_contraction(const std::string& model, const std::map<std::string,
 }
 
 TEST(MaterialStates, IsometricContractionLu2010) {
-  isometric_contraction("lu2010", {{"t0", 0.1}, {"t1", 0.4}});
+  isometric_contraction("lu2010", {{"t0", 0.1}, {"t1", 0.4}, {"substeps", 1.0}});
 }
 
 TEST(MaterialStates, IsometricContractionTang2009) {
-  isometric_contraction("tang2009", {{"t0", 0.1}, {"t1", 0.4}, {"ramp_time", 0.0}});
+  isometric_contraction("tang2009",
+                        {{"t0", 0.1}, {"t1", 0.4}, {"ramp_time", 0.0}, {"substeps", 1.0}});
 }
 
 // Passive stretch to λ = 1.1 along the fibre before t0, then activation: the CE slid with the
@@ -170,6 +175,77 @@ TEST(MaterialStates, InactiveContractileElementSlidesFreely) {
     committed = trial;
   }
   EXPECT_GT(law.fibre().series_stress(committed), 0.5 * p.sigma0);
+}
+
+// Sub-stepping (hill_fibre.hpp): m substeps of a step are m single steps of dt/m with λ̄f
+// interpolated linearly from the committed λ̄f and f_t at each substep's end. The adaptive m
+// depends on the committed state only: 1 for a passive point and at isometric equilibrium, more
+// at the activation front, and the adaptive result is that of substeps = m.
+TEST(MaterialStates, SubstepsAreRepeatedSingleSteps) {
+  for (const std::string model : {"lu2010", "tang2009"}) {
+    const std::map<std::string, double> base = {{"t0", 0.1}, {"ramp_time", 0.0}};
+    const auto adaptive = make_material(model, base);
+    auto single_params = base, fixed_params = base;
+    single_params["substeps"] = 1.0;
+    const auto single = make_material(model, single_params);
+    const auto& law = dynamic_cast<const HillMuscle&>(*adaptive);
+    const HillFibreParameters& p = law.parameters().fibre;
+    const double dt = 1e-3, time = 0.11;
+    const double lf0 = 1.02, lf = 1.015;  // shortening fibre, J = 1, fibre along z
+    const auto input = [&](double lambda, double t, double h, std::span<const double> history) {
+      PointInput in;
+      in.F = Eigen::Vector3d(1.0 / std::sqrt(lambda), 1.0 / std::sqrt(lambda), lambda).asDiagonal();
+      in.fibre = Eigen::Vector3d::UnitZ();
+      in.time = t;
+      in.dt = h;
+      in.history = history;
+      return in;
+    };
+    // The CE at rest with σ_SEE = 0 (the fibre has just been activated).
+    std::vector<double> committed = {1.0, (1.0 + p.k) * lf0 - p.k, 0.0, lf0};
+    const int m = law.fibre().substep_count(committed, time, dt);
+    EXPECT_GT(m, 4) << model;
+    EXPECT_EQ(law.fibre().substep_count(committed, 0.05, dt), 1) << model << ": passive";
+    EXPECT_EQ(law.fibre().substep_count(committed, time, 0.0), 1) << model << ": dt = 0";
+    std::vector<double> equilibrium = committed;
+    const double s = p.sigma0 * law.activation(time) * force_length(lf0, p.lambda_opt);
+    equilibrium[kLambdaS] = 1.0 + std::log1p(s / p.beta) / p.alpha;
+    EXPECT_EQ(law.fibre().substep_count(equilibrium, time, dt), 1) << model << ": equilibrium";
+
+    fixed_params["substeps"] = m;
+    const auto fixed = make_material(model, fixed_params);
+    std::vector<double> trial_a(kHillHistorySize), trial_f(kHillHistorySize);
+    PointResult out_a, out_f;
+    out_a.history = trial_a;
+    out_f.history = trial_f;
+    ASSERT_EQ(law.evaluate(input(lf, time, dt, committed), out_a), PointStatus::ok);
+    ASSERT_EQ(fixed->evaluate(input(lf, time, dt, committed), out_f), PointStatus::ok);
+    EXPECT_EQ(trial_a, trial_f) << model;
+    EXPECT_EQ(out_a.S, out_f.S) << model;
+
+    std::vector<double> state = committed, next(kHillHistorySize);
+    PointResult out;
+    out.history = next;
+    for (int j = 1; j <= m; ++j) {
+      const double w = static_cast<double>(j) / m;
+      const double lambda = j == m ? lf : lf0 + w * (lf - lf0);
+      const double t = j == m ? time : time - dt + w * dt;
+      ASSERT_EQ(single->evaluate(input(lambda, t, dt / m, state), out), PointStatus::ok);
+      state = next;
+    }
+    for (int i : {kLambdaS, kLambdaM, kLambdaF})
+      EXPECT_NEAR(trial_a[i], state[i], 1e-12) << model << " entry " << i;
+    // The step's Δλm is the sum over the substeps.
+    EXPECT_NEAR(trial_a[kDeltaLambdaM], state[kLambdaM] - committed[kLambdaM], 1e-12) << model;
+    EXPECT_LT((out_a.S - out.S).norm(), 1e-9 * p.sigma0) << model;
+    EXPECT_LT(trial_a[kDeltaLambdaM], 0.0) << model << ": the CE shortens";
+  }
+}
+
+TEST(MaterialStates, SubstepsParameterMustBeAWholeNumber) {
+  EXPECT_THROW(make_material("lu2010", {{"substeps", 2.5}}), std::invalid_argument);
+  EXPECT_THROW(make_material("tang2009", {{"substeps", -1.0}}), std::invalid_argument);
+  EXPECT_NO_THROW(make_material("tang2009", {{"substeps", 8.0}}));
 }
 
 }  // namespace

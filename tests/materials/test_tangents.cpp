@@ -1,7 +1,8 @@
 // Tangents of every law against central differences of its stress (full and isochoric), over
 // random F (stretches 0.7–1.4, shear, rotation) and random fibres; the Hill laws in passive,
 // active-shortening and active-lengthening states with dt = 1e-3 s, away from the kinks of the
-// piecewise curves (f_λ at r = 0.6, 1.4; f_v at Δλm = 0).
+// piecewise curves (f_λ at r = 0.6, 1.4; f_v at Δλm = 0), and at the activation front, where the
+// update takes several substeps (hill_fibre.hpp) and the tangent is chained through them.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -74,15 +75,26 @@ TEST(MaterialTangent, HyperelasticLawsMatchCentralDifferences) {
   }
 }
 
-enum class State { passive, shortening, lengthening };
+enum class State { passive, shortening, lengthening, front };
 
 const char* state_name(State s) {
-  return s == State::passive ? "passive" : (s == State::shortening ? "shortening" : "lengthening");
+  switch (s) {
+    case State::passive:
+      return "passive";
+    case State::shortening:
+      return "shortening";
+    case State::lengthening:
+      return "lengthening";
+    case State::front:
+      return "front";
+  }
+  return "";
 }
 
 // A committed history that puts the point in the wanted state at stretch lambda_f: passive with
 // a CE that slid freely; active from an isometric equilibrium (σ_SEE = s) with the fibre length
-// changed by -+ 0.5 1/s · dt since the last step, so the CE lengthens or shortens.
+// changed by -+ 0.5 1/s · dt since the last step, so the CE lengthens or shortens; at the front,
+// the SEE carries a fifth of s (activation just switched on): the CE shortens fast, in substeps.
 std::vector<double> history_for(const HillMuscle& law, State state, double lambda_f, double time) {
   const HillFibreParameters& p = law.parameters().fibre;
   std::vector<double> h(kHillHistorySize);
@@ -90,7 +102,7 @@ std::vector<double> history_for(const HillMuscle& law, State state, double lambd
   double ls = 1.0;
   if (state != State::passive) {
     const double s = p.sigma0 * law.activation(time) * force_length(lambda_f, p.lambda_opt);
-    ls = 1.0 + std::log1p(s / p.beta) / p.alpha;
+    ls = 1.0 + std::log1p((state == State::front ? 0.2 : 1.0) * s / p.beta) / p.alpha;
   }
   h[kLambdaS] = ls;
   h[kLambdaM] = (1.0 + p.k) * (lambda_f - delta) - p.k * ls;
@@ -106,7 +118,7 @@ void check_hill_law(const std::string& model, const std::map<std::string, double
   const auto& law = dynamic_cast<const HillMuscle&>(*owner);
   const double lopt = law.parameters().fibre.lambda_opt;
   std::mt19937 rng(7);
-  for (State state : {State::passive, State::shortening, State::lengthening}) {
+  for (State state : {State::passive, State::shortening, State::lengthening, State::front}) {
     Worst worst;
     int done = 0;
     while (done < 20) {
@@ -125,6 +137,12 @@ void check_hill_law(const std::string& model, const std::map<std::string, double
       in.time = state == State::passive ? 0.05 : 0.2;
       const std::vector<double> history = history_for(law, state, lf, in.time);
       in.history = history;
+      const int substeps = law.fibre().substep_count(history, in.time, in.dt);
+      if (state == State::front && !law.parameters().fibre.explicit_lag) {
+        EXPECT_GT(substeps, 1);
+      } else if (law.parameters().fibre.substeps == 0) {
+        EXPECT_EQ(substeps, 1);
+      }
       const testing::Evaluation e = evaluate(law, in);
       ASSERT_EQ(e.status, PointStatus::ok);
       const double dlm = e.trial[kDeltaLambdaM];
@@ -159,6 +177,12 @@ TEST(MaterialTangent, Tang2009ConsistentTangentMatchesCentralDifferences) {
 TEST(MaterialTangent, FibreTermsAloneMatchCentralDifferences) {
   check_hill_law("lu2010", {{"c", 1e-3}});
   check_hill_law("tang2009", {{"c", 1e-3}});
+}
+
+// A fixed number of substeps in every state (the adaptive default takes one away from the front).
+TEST(MaterialTangent, FixedSubstepsTangentMatchesCentralDifferences) {
+  check_hill_law("lu2010", {{"substeps", 3.0}, {"c", 1e-3}});
+  check_hill_law("tang2009", {{"substeps", 3.0}, {"c", 1e-3}});
 }
 
 TEST(MaterialTangent, ExplicitLagTangentMatchesCentralDifferences) {
