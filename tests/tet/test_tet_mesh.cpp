@@ -1,0 +1,157 @@
+// Tetrahedral meshes: structured boxes, quadrature exactness, gmsh meshing of an example IGES
+// boundary against the volume of the NURBS solid.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "geometry/iges.hpp"
+#include "geometry/shrink.hpp"
+#include "geometry/volume_measures.hpp"
+#include "tet/tet_elements.hpp"
+#include "tet/tet_mesh.hpp"
+#include "tet/tet_meshing.hpp"
+
+namespace isomuscle::tet {
+namespace {
+
+double factorial(int n) {
+  return n <= 1 ? 1.0 : n * factorial(n - 1);
+}
+
+// int xi^a eta^b zeta^c over the reference tetrahedron = a! b! c! / (a + b + c + 3)!.
+TEST(TetRule, IntegratesMonomialsUpToItsDegree) {
+  for (int degree : {1, 2, 3, 4, 6, 8}) {
+    const TetRule rule = tet_rule(degree);
+    for (int a = 0; a <= degree; ++a) {
+      for (int b = 0; a + b <= degree; ++b) {
+        for (int c = 0; a + b + c <= degree; ++c) {
+          double sum = 0.0;
+          for (std::size_t q = 0; q < rule.points.size(); ++q) {
+            const Eigen::Vector3d& x = rule.points[q];
+            sum += rule.weights[q] * std::pow(x[0], a) * std::pow(x[1], b) * std::pow(x[2], c);
+          }
+          const double exact =
+              factorial(a) * factorial(b) * factorial(c) / factorial(a + b + c + 3);
+          EXPECT_NEAR(sum, exact, 1e-15) << "degree " << degree << " monomial " << a << b << c;
+        }
+      }
+    }
+  }
+  // And not beyond: the 4-point rule misses xi^3.
+  const TetRule r2 = tet_rule(2);
+  double sum = 0.0;
+  for (std::size_t q = 0; q < r2.points.size(); ++q) {
+    sum += r2.weights[q] * std::pow(r2.points[q][0], 3);
+  }
+  EXPECT_GT(std::abs(sum - 6.0 / factorial(6)), 1e-6);
+  EXPECT_THROW(tet_rule(0), std::invalid_argument);
+}
+
+TEST(TetShape, PartitionOfUnityAndNodalInterpolation) {
+  const Eigen::Vector3d ref[10] = {{0, 0, 0},   {1, 0, 0},  {0, 1, 0},  {0, 0, 1},   {.5, 0, 0},
+                                   {.5, .5, 0}, {0, .5, 0}, {0, 0, .5}, {0, .5, .5}, {.5, 0, .5}};
+  for (int order : {1, 2}) {
+    const int n = tet_nodes(order);
+    double N[10];
+    Eigen::Vector3d dN[10];
+    for (int i = 0; i < n; ++i) {
+      tet_shape_values(order, ref[i], N);
+      for (int j = 0; j < n; ++j) {
+        EXPECT_NEAR(N[j], i == j ? 1.0 : 0.0, 1e-15);
+      }
+    }
+    const Eigen::Vector3d x(0.2, 0.3, 0.1);
+    tet_shape_gradients(order, x, dN);
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int j = 0; j < n; ++j) {
+      sum += dN[j];
+      // Central differences of the values.
+      double Np[10], Nm[10];
+      for (int d = 0; d < 3; ++d) {
+        const Eigen::Vector3d h = 1e-6 * Eigen::Vector3d::Unit(d);
+        tet_shape_values(order, x + h, Np);
+        tet_shape_values(order, x - h, Nm);
+        EXPECT_NEAR(dN[j][d], (Np[j] - Nm[j]) / 2e-6, 1e-8);
+      }
+    }
+    EXPECT_NEAR(sum.norm(), 0.0, 1e-14);
+  }
+}
+
+TEST(StructuredBox, VolumeBoundaryAndOrientation) {
+  for (int order : {1, 2}) {
+    const TetMesh mesh =
+        structured_box(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 2, 3), {2, 3, 4}, order);
+    EXPECT_NO_THROW(mesh.validate());
+    EXPECT_EQ(mesh.num_elements(), 6 * 24);
+    EXPECT_NEAR(mesh_volume(mesh), 6.0, 1e-13);
+    // Each box face is 2 triangles per cell face.
+    EXPECT_EQ(mesh.num_boundary_faces(), 2 * 2 * (2 * 3 + 3 * 4 + 2 * 4));
+    EXPECT_EQ(boundary_nodes(mesh, group_tag(mesh, "x_min")), nodes_on_plane(mesh, 0, 0.0, 1e-12));
+  }
+  EXPECT_THROW(group_tag(structured_box({0, 0, 0}, {1, 1, 1}, {1, 1, 1}, 1), "top"),
+               std::invalid_argument);
+}
+
+// Meshing examples/geometry/barrel.igs (faces-mode NURBS boundary, mm) gives the volume of the
+// NURBS shrink solid to within 1 % at a moderate element size (the tetrahedra's chords cut the
+// curved boundary; 10-node elements follow it).
+TEST(MeshIges, BarrelVolumeMatchesNurbsSolid) {
+  const std::filesystem::path file =
+      std::filesystem::path(ISOMUSCLE_SOURCE_DIR) / "examples/geometry/barrel.igs";
+  const auto surfaces = geometry::read_iges_surfaces(file);
+  ASSERT_EQ(surfaces.size(), 1u);
+  const geometry::NurbsVolume solid = geometry::shrink_to_centreline(surfaces[0].surface, 0);
+  const double v_nurbs = std::abs(geometry::converged_solid_volume(solid).volume);
+  for (int order : {1, 2}) {
+    MeshingOptions opt;
+    opt.element_size = 1.8e-3;
+    opt.order = order;
+    const TetMesh mesh = mesh_iges(file, opt);
+    const double v = mesh_volume(mesh);
+    const double rel = std::abs(v - v_nurbs) / v_nurbs;
+    std::printf("barrel order %d: %d elements, %d nodes, V = %.8e m^3, NURBS %.8e, rel %.2e\n",
+                order, mesh.num_elements(), mesh.num_nodes(), v, v_nurbs, rel);
+    EXPECT_LT(rel, 1e-2);
+    EXPECT_GT(mesh.num_boundary_faces(), 0);
+  }
+}
+
+// The other example shapes at order 2, about five elements across (volume^(1/3) / 5). Measured
+// relative volume errors: cone -6.7e-5, torus -5.6e-4 (closed: no caps), half torus -2.0e-4.
+// Not dao.igs: its ends are not planar, and gmsh's filling caps differ from the shrink solid's
+// ruled end faces (measured -2.8 %), a modelling difference rather than a meshing error.
+TEST(MeshIges, ExampleShapesMatchNurbsSolids) {
+  for (const char* name : {"cone", "torus", "half_torus"}) {
+    const auto file = std::filesystem::path(ISOMUSCLE_SOURCE_DIR) / "examples/geometry" /
+                      (std::string(name) + ".igs");
+    const auto surfaces = geometry::read_iges_surfaces(file);
+    const double v_nurbs = std::abs(
+        geometry::converged_solid_volume(geometry::shrink_to_centreline(surfaces.at(0).surface, 0))
+            .volume);
+    MeshingOptions opt;
+    opt.order = 2;
+    opt.element_size = std::cbrt(v_nurbs) / 5.0;
+    const TetMesh mesh = mesh_iges(file, opt);
+    const double rel = mesh_volume(mesh) / v_nurbs - 1.0;
+    std::printf("%s: %d elements, relative volume error %.2e\n", name, mesh.num_elements(), rel);
+    EXPECT_LT(std::abs(rel), 1e-3) << name;
+  }
+}
+
+TEST(MeshIges, MissingFileNamesIt) {
+  MeshingOptions opt;
+  opt.element_size = 1e-3;
+  try {
+    mesh_iges("no/such/file.igs", opt);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("no/such/file.igs"), std::string::npos);
+  }
+  opt.element_size = -1.0;
+  EXPECT_THROW(mesh_iges("x.igs", opt), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace isomuscle::tet

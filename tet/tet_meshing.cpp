@@ -1,0 +1,271 @@
+#include "tet/tet_meshing.hpp"
+
+#include <gmsh.h>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+namespace isomuscle::tet {
+
+namespace {
+
+constexpr int kGmshTet4 = 4;
+constexpr int kGmshTet10 = 11;
+constexpr int kGmshTri3 = 2;
+constexpr int kGmshTri6 = 9;
+
+std::mutex& gmsh_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+// RAII guard: one gmsh session at a time in this process, gmsh's messages off and OpenCASCADE's
+// (its IGES import prints on stdout through Message::DefaultMessenger()) suspended, gmsh finalised
+// and the OCCT printers restored on every path.
+class GmshSession {
+ public:
+  GmshSession() : lock_(gmsh_mutex()), saved_(Message::DefaultMessenger()->Printers()) {
+    Message::DefaultMessenger()->ChangePrinters().Clear();
+    gmsh::initialize(0, nullptr, false);
+    gmsh::option::setNumber("General.Terminal", 0);
+    gmsh::option::setNumber("General.Verbosity", 0);
+  }
+  ~GmshSession() {
+    try {
+      gmsh::finalize();
+    } catch (...) {  // nothing sensible to do in a destructor
+    }
+    Message::DefaultMessenger()->ChangePrinters() = saved_;
+  }
+  GmshSession(const GmshSession&) = delete;
+  GmshSession& operator=(const GmshSession&) = delete;
+
+ private:
+  std::lock_guard<std::mutex> lock_;
+  Message_SequenceOfPrinters saved_;
+};
+
+// Tag of the first physical group of each entity of dimension dim (entity tag when none), and the
+// group names.
+std::map<int, int> entity_groups(int dim, std::map<int, std::string>& names) {
+  std::map<int, int> out;
+  gmsh::vectorpair groups;
+  gmsh::model::getPhysicalGroups(groups, dim);
+  for (const auto& [d, tag] : groups) {
+    std::vector<int> entities;
+    gmsh::model::getEntitiesForPhysicalGroup(d, tag, entities);
+    for (int ent : entities) {
+      out.emplace(ent, tag);
+    }
+    std::string name;
+    gmsh::model::getPhysicalName(d, tag, name);
+    if (!name.empty()) {
+      names[tag] = name;
+    }
+  }
+  return out;
+}
+
+// The current gmsh model's tetrahedra and boundary triangles as a TetMesh (lengths times scale).
+TetMesh extract_mesh(const std::string& file, double scale) {
+  TetMesh mesh;
+  const std::map<int, int> volume_groups = entity_groups(3, mesh.group_names);
+  const std::map<int, int> surface_groups = entity_groups(2, mesh.group_names);
+  gmsh::vectorpair volumes;
+  gmsh::model::getEntities(volumes, 3);
+  std::vector<std::size_t> tet_tags;  // gmsh node tags, nodes_per_element per element
+  std::vector<int> regions;
+  int order = 0;
+  for (const auto& [dim, ent] : volumes) {
+    std::vector<int> types;
+    gmsh::model::mesh::getElementTypes(types, dim, ent);
+    for (int type : types) {
+      if (type != kGmshTet4 && type != kGmshTet10) {
+        continue;
+      }
+      const int this_order = type == kGmshTet4 ? 1 : 2;
+      if (order != 0 && order != this_order) {
+        throw std::runtime_error("'" + file + "' mixes 4-node and 10-node tetrahedra");
+      }
+      order = this_order;
+      std::vector<std::size_t> elem_tags, node_tags;
+      gmsh::model::mesh::getElementsByType(type, elem_tags, node_tags, ent);
+      tet_tags.insert(tet_tags.end(), node_tags.begin(), node_tags.end());
+      const auto g = volume_groups.find(ent);
+      regions.insert(regions.end(), elem_tags.size(), g == volume_groups.end() ? ent : g->second);
+    }
+  }
+  if (order == 0) {
+    throw std::runtime_error("'" + file + "' holds no tetrahedra (4- or 10-node) in a volume");
+  }
+  mesh.order = order;
+  // Nodes: those of the tetrahedra, numbered by ascending gmsh tag.
+  std::vector<std::size_t> used = tet_tags;
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  std::unordered_map<std::size_t, int> index;
+  index.reserve(used.size());
+  for (std::size_t i = 0; i < used.size(); ++i) {
+    index.emplace(used[i], static_cast<int>(i));
+  }
+  std::vector<std::size_t> node_tags;
+  std::vector<double> coords, params;
+  gmsh::model::mesh::getNodes(node_tags, coords, params, -1, -1, false, false);
+  mesh.nodes.assign(used.size(), Eigen::Vector3d::Zero());
+  for (std::size_t i = 0; i < node_tags.size(); ++i) {
+    const auto it = index.find(node_tags[i]);
+    if (it != index.end()) {
+      mesh.nodes[it->second] =
+          scale * Eigen::Vector3d(coords[3 * i], coords[3 * i + 1], coords[3 * i + 2]);
+    }
+  }
+  mesh.elements.reserve(tet_tags.size());
+  for (std::size_t t : tet_tags) {
+    mesh.elements.push_back(index.at(t));
+  }
+  mesh.element_region = std::move(regions);
+  // Orientation: swap corners 1 and 2 (and edge nodes 4 <-> 6, 8 <-> 9) of negative elements.
+  const int npe = mesh.nodes_per_element();
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    int* el = mesh.elements.data() + static_cast<std::size_t>(e) * npe;
+    Eigen::Matrix3d J;
+    for (int c = 0; c < 3; ++c) {
+      J.col(c) = mesh.nodes[el[c + 1]] - mesh.nodes[el[0]];
+    }
+    if (J.determinant() < 0.0) {
+      std::swap(el[1], el[2]);
+      if (order == 2) {
+        std::swap(el[4], el[6]);
+        std::swap(el[8], el[9]);
+      }
+    }
+  }
+  // Boundary triangles.
+  gmsh::vectorpair surfaces;
+  gmsh::model::getEntities(surfaces, 2);
+  const int tri_type = order == 1 ? kGmshTri3 : kGmshTri6;
+  for (const auto& [dim, ent] : surfaces) {
+    std::vector<std::size_t> elem_tags, tri_nodes;
+    gmsh::model::mesh::getElementsByType(tri_type, elem_tags, tri_nodes, ent);
+    const auto g = surface_groups.find(ent);
+    const int tag = g == surface_groups.end() ? ent : g->second;
+    for (std::size_t n : tri_nodes) {
+      const auto it = index.find(n);
+      if (it == index.end()) {
+        throw std::runtime_error("'" + file + "': a triangle of surface " + std::to_string(ent) +
+                                 " has a node that belongs to no tetrahedron");
+      }
+      mesh.boundary.push_back(it->second);
+    }
+    mesh.boundary_tag.insert(mesh.boundary_tag.end(), elem_tags.size(), tag);
+  }
+  try {
+    mesh.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error("'" + file + "': " + e.what());
+  }
+  return mesh;
+}
+
+// A volume from the imported faces: the open boundary curves of the faces (a tube's two end
+// circles: the shrink solids of thesis 5.13 have flat ends that the boundary surface lacks) are
+// capped by filling surfaces, and all faces are sewn into one shell.
+void make_volume_from_faces(const std::string& name) {
+  gmsh::vectorpair faces;
+  gmsh::model::occ::getEntities(faces, 2);
+  if (faces.empty()) {
+    throw std::runtime_error("cannot mesh '" + name + "': the file holds no surfaces");
+  }
+  gmsh::model::occ::synchronize();
+  gmsh::vectorpair open_curves;
+  gmsh::model::getBoundary(faces, open_curves, true, false, false);
+  std::vector<int> tags;
+  for (const auto& [dim, tag] : faces) {
+    tags.push_back(tag);
+  }
+  for (const auto& [dim, curve] : open_curves) {
+    const int loop = gmsh::model::occ::addCurveLoop({std::abs(curve)});
+    tags.push_back(gmsh::model::occ::addSurfaceFilling(loop));
+  }
+  const int shell = gmsh::model::occ::addSurfaceLoop(tags, -1, true);
+  gmsh::model::occ::addVolume({shell});
+}
+
+}  // namespace
+
+void MeshingOptions::validate() const {
+  if (!(element_size > 0.0) || !std::isfinite(element_size)) {
+    throw std::invalid_argument("element_size " + std::to_string(element_size) +
+                                " must be a finite length > 0 (m)");
+  }
+  if (order != 1 && order != 2) {
+    throw std::invalid_argument("order " + std::to_string(order) +
+                                " is not supported (valid: 1 = 4-node, 2 = 10-node)");
+  }
+  if (threads < 1) {
+    throw std::invalid_argument("threads must be >= 1");
+  }
+}
+
+// Import, heal and sew the faces, make a volume, mesh it (TOOLING.md, gmsh 4.8).
+TetMesh mesh_iges(const std::filesystem::path& file, const MeshingOptions& options) {
+  options.validate();
+  const std::string name = file.string();
+  if (!std::filesystem::is_regular_file(file)) {
+    throw std::runtime_error("cannot mesh '" + name + "': no such file");
+  }
+  GmshSession session;
+  try {
+    gmsh::model::add("isomuscle");
+    gmsh::option::setString("Geometry.OCCTargetUnit", "M");
+    gmsh::vectorpair imported;
+    gmsh::model::occ::importShapes(name, imported, true, "iges");
+    gmsh::vectorpair solids;
+    gmsh::model::occ::getEntities(solids, 3);
+    if (solids.empty()) {
+      gmsh::vectorpair healed;
+      gmsh::model::occ::healShapes(healed, {}, 1e-8, true, true, true, true, true);
+      gmsh::model::occ::getEntities(solids, 3);
+    }
+    if (solids.empty()) {
+      make_volume_from_faces(name);
+    }
+    gmsh::model::occ::synchronize();
+    gmsh::option::setNumber("Mesh.MeshSizeMax", options.element_size);
+    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.1 * options.element_size);
+    gmsh::option::setNumber("General.NumThreads", options.threads);
+    gmsh::model::mesh::generate(3);
+    if (options.order == 2) {
+      gmsh::model::mesh::setOrder(2);
+    }
+    return extract_mesh(name, 1.0);
+  } catch (const std::string& what) {
+    throw std::runtime_error("gmsh could not mesh '" + name + "': " + what);
+  }
+}
+
+TetMesh read_msh(const std::filesystem::path& file, double metres_per_unit) {
+  const std::string name = file.string();
+  if (!(metres_per_unit > 0.0) || !std::isfinite(metres_per_unit)) {
+    throw std::invalid_argument("read_msh: metres_per_unit must be > 0");
+  }
+  if (!std::filesystem::is_regular_file(file)) {
+    throw std::runtime_error("cannot read mesh '" + name + "': no such file");
+  }
+  GmshSession session;
+  try {
+    gmsh::open(name);
+    return extract_mesh(name, metres_per_unit);
+  } catch (const std::string& what) {
+    throw std::runtime_error("gmsh could not read '" + name + "': " + what);
+  }
+}
+
+}  // namespace isomuscle::tet

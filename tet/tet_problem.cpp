@@ -1,0 +1,413 @@
+#include "tet/tet_problem.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace isomuscle::tet {
+
+const char* to_string(TetFormulation f) {
+  switch (f) {
+    case TetFormulation::automatic:
+      return "automatic";
+    case TetFormulation::displacement:
+      return "displacement";
+    case TetFormulation::mixed:
+      return "mixed";
+  }
+  return "?";
+}
+
+TetFormulation parse_tet_formulation(std::string_view name) {
+  if (name == "automatic") {
+    return TetFormulation::automatic;
+  }
+  if (name == "displacement") {
+    return TetFormulation::displacement;
+  }
+  if (name == "mixed") {
+    return TetFormulation::mixed;
+  }
+  throw std::invalid_argument("unknown formulation '" + std::string(name) +
+                              "' (valid: automatic, displacement, mixed)");
+}
+
+void TetProblemOptions::validate() const {
+  if (pressure_degree != 0 && pressure_degree != 1) {
+    throw std::invalid_argument("pressure_degree " + std::to_string(pressure_degree) +
+                                " (valid: 0 = constant, 1 = linear discontinuous per element)");
+  }
+  if (threads < 0) {
+    throw std::invalid_argument("threads must be >= 0 (0 = OpenMP default)");
+  }
+}
+
+TetProblem::TetProblem(const TetSpace& space, const materials::MaterialLaw& law,
+                       std::vector<Eigen::Vector3d> fibres, std::vector<TetDirichlet> conditions,
+                       VectorField body_force, TetProblemOptions options)
+    : space_(space),
+      law_(law),
+      fibres_(std::move(fibres)),
+      conditions_(std::move(conditions)),
+      body_force_(std::move(body_force)),
+      options_(options) {
+  options_.validate();
+  const TetMesh& mesh = space_.mesh();
+  switch (options_.formulation) {
+    case TetFormulation::automatic:
+      formulation_ =
+          law_.has_volumetric_split() ? TetFormulation::mixed : TetFormulation::displacement;
+      break;
+    case TetFormulation::displacement:
+      formulation_ = TetFormulation::displacement;
+      break;
+    case TetFormulation::mixed:
+      if (!law_.has_volumetric_split()) {
+        throw std::invalid_argument("formulation 'mixed' needs a law with a volumetric split; '" +
+                                    law_.name() + "' has none (use 'displacement' or 'automatic')");
+      }
+      formulation_ = TetFormulation::mixed;
+      break;
+  }
+  if (static_cast<int>(fibres_.size()) != space_.num_points()) {
+    throw std::invalid_argument("TetProblem: " + std::to_string(fibres_.size()) +
+                                " fibre directions for " + std::to_string(space_.num_points()) +
+                                " quadrature points");
+  }
+  for (std::size_t i = 0; i < fibres_.size(); ++i) {
+    if (!fibres_[i].allFinite() || std::abs(fibres_[i].norm() - 1.0) > 1e-8) {
+      throw std::invalid_argument("TetProblem: fibre direction " + std::to_string(i) +
+                                  " is not a finite unit vector");
+    }
+  }
+  // DOF numbering: prescribed DOFs marked, the others numbered in node order.
+  const int ndof = 3 * mesh.num_nodes();
+  std::vector<char> fixed(ndof, 0);
+  for (std::size_t c = 0; c < conditions_.size(); ++c) {
+    for (int n : conditions_[c].nodes) {
+      if (n < 0 || n >= mesh.num_nodes()) {
+        throw std::invalid_argument("Dirichlet condition " + std::to_string(c) + " names node " +
+                                    std::to_string(n) + " of " + std::to_string(mesh.num_nodes()));
+      }
+      for (int k = 0; k < 3; ++k) {
+        fixed[3 * n + k] = fixed[3 * n + k] || conditions_[c].components[k];
+      }
+    }
+  }
+  free_index_.assign(ndof, solver::kPrescribed);
+  for (int d = 0; d < ndof; ++d) {
+    if (!fixed[d]) {
+      free_index_[d] = num_free_++;
+    }
+  }
+  const int nel = mesh.num_elements();
+  const int nen = space_.nodes_per_element();
+  const int nqp = space_.points_per_element();
+  element_dofs_.resize(nel);
+  std::vector<std::vector<int>> free_lists(nel);
+  for (int e = 0; e < nel; ++e) {
+    const auto el = mesh.element(e);
+    for (int a = 0; a < nen; ++a) {
+      for (int k = 0; k < 3; ++k) {
+        element_dofs_[e].push_back(3 * el[a] + k);
+        free_lists[e].push_back(free_index_[3 * el[a] + k]);
+      }
+    }
+  }
+  pattern_ = solver::SparsityPattern(solver::ElementDofs(free_lists), num_free_, options_.storage,
+                                     options_.scatter);
+  colouring_ = solver::ElementColouring(solver::ElementDofs(element_dofs_));
+  // Pressure space: phi = 1, or (1, xi, eta, zeta) at the reference points; M_e factorised once.
+  pressure_size_ = options_.pressure_degree == 0 ? 1 : 4;
+  const int m = pressure_size_;
+  if (formulation_ == TetFormulation::mixed) {
+    pressure_values_.resize(static_cast<std::size_t>(nel) * nqp * m);
+    mass_.resize(nel);
+    for (int e = 0; e < nel; ++e) {
+      Eigen::MatrixXd M = Eigen::MatrixXd::Zero(m, m);
+      for (int q = 0; q < nqp; ++q) {
+        double* phi = pressure_values_.data() + (static_cast<std::size_t>(e) * nqp + q) * m;
+        phi[0] = 1.0;
+        for (int i = 1; i < m; ++i) {
+          phi[i] = space_.rule().points[q][i - 1];
+        }
+        const Eigen::Map<const Eigen::VectorXd> p(phi, m);
+        M.noalias() += space_.dv(e)[q] * p * p.transpose();
+      }
+      mass_[e].compute(M);
+      if (mass_[e].info() != Eigen::Success) {
+        throw std::invalid_argument("TetProblem: the pressure mass matrix of element " +
+                                    std::to_string(e) +
+                                    " is not positive definite (use pressure_degree 0 or a "
+                                    "quadrature rule with more points)");
+      }
+    }
+  }
+  workspaces_.assign(solver::resolve_thread_count(options_.threads), TetWorkspace(nen, nqp, m));
+  history_size_ = law_.history_size();
+  history_committed_.assign(static_cast<std::size_t>(space_.num_points()) * history_size_, 0.0);
+  for (int i = 0; history_size_ > 0 && i < space_.num_points(); ++i) {
+    law_.initial_history(std::span<double>(
+        history_committed_.data() + static_cast<std::size_t>(i) * history_size_, history_size_));
+  }
+  history_trial_ = history_committed_;
+  history_previous_ = history_committed_;
+  committed_full_.setZero(ndof);
+  u_full_.setZero(ndof);
+  begin_step(0.0, 0.0);
+}
+
+// Prescribed values and the body force at t = time (NonlinearProblem::begin_step):
+// f_ext,a = sum_e sum_q N_a(xi_q) b(X_q, t) dV_q.
+void TetProblem::begin_step(double time, double dt) {
+  if (!std::isfinite(time) || !std::isfinite(dt) || dt < 0.0) {
+    throw std::invalid_argument("TetProblem::begin_step: time and dt must be finite, dt >= 0");
+  }
+  time_ = time;
+  dt_ = dt;
+  trial_valid_ = false;
+  const TetMesh& mesh = space_.mesh();
+  prescribed_.setZero(3 * mesh.num_nodes());
+  for (const TetDirichlet& c : conditions_) {
+    for (int n : c.nodes) {
+      const Eigen::Vector3d v = c.value ? c.value(mesh.nodes[n], time_) : Eigen::Vector3d::Zero();
+      for (int k = 0; k < 3; ++k) {
+        if (c.components[k]) {
+          prescribed_[3 * n + k] = v[k];
+        }
+      }
+    }
+  }
+  f_ext_.setZero(3 * mesh.num_nodes());
+  if (body_force_) {
+    const int nen = space_.nodes_per_element();
+    for (int e = 0; e < mesh.num_elements(); ++e) {
+      const auto el = mesh.element(e);
+      for (int q = 0; q < space_.points_per_element(); ++q) {
+        const Eigen::Vector3d b = body_force_(space_.position(e, q), time_) * space_.dv(e)[q];
+        const auto N = space_.values(q);
+        for (int a = 0; a < nen; ++a) {
+          f_ext_.segment<3>(3 * el[a]) += N[a] * b;
+        }
+      }
+    }
+  }
+}
+
+Eigen::VectorXd TetProblem::full_displacement(const Eigen::VectorXd& u) const {
+  Eigen::VectorXd full = prescribed_;
+  for (int d = 0; d < full.size(); ++d) {
+    if (free_index_[d] >= 0) {
+      full[d] = u[free_index_[d]];
+    }
+  }
+  return full;
+}
+
+std::string TetProblem::describe_failure(int e, const TetKernelStatus& s) const {
+  std::ostringstream msg;
+  msg << "tetrahedron " << e << " (region " << space_.mesh().element_region[e] << ")";
+  if (s.point >= 0) {
+    const Eigen::Vector3d& X = space_.position(e, s.point);
+    msg << ", quadrature point " << s.point << " at X = (" << X[0] << ", " << X[1] << ", " << X[2]
+        << ") m";
+  }
+  msg << ", t = " << time_ << " s: ";
+  switch (s.kind) {
+    case TetKernelStatus::Kind::inverted:
+      msg << "J = det F = " << s.value << " <= 0 (inverted)";
+      break;
+    case TetKernelStatus::Kind::inverted_dilatation:
+      msg << "projected dilatation J~ = " << s.value << " <= 0";
+      break;
+    case TetKernelStatus::Kind::material:
+      msg << "material law '" << law_.name() << "' failed (" << materials::to_string(s.material)
+          << ") at J = " << s.value;
+      break;
+    case TetKernelStatus::Kind::not_finite:
+      msg << "non-finite stress or tangent from law '" << law_.name() << "' at J = " << s.value;
+      break;
+    case TetKernelStatus::Kind::ok:
+      msg << "ok";
+      break;
+  }
+  return msg.str();
+}
+
+// Element loop: kernel per element into the thread's workspace, scatter by colour (DESIGN 2, 5).
+solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, bool want_tangent,
+                                              double* values) {
+  f_int_.setZero(u_full.size());
+  const int nqp = space_.points_per_element();
+  const int nen = space_.nodes_per_element();
+  const bool mixed = formulation_ == TetFormulation::mixed;
+  const std::size_t hs = static_cast<std::size_t>(history_size_);
+  auto body = [&](int e, int thread) -> solver::EvaluationStatus {
+    TetWorkspace& ws = workspaces_[thread];
+    const auto el = space_.mesh().element(e);
+    for (int a = 0; a < nen; ++a) {
+      ws.ue.col(a) = u_full.segment<3>(3 * el[a]);
+    }
+    TetMaterialContext ctx;
+    ctx.law = &law_;
+    ctx.fibres = fibres_.data() + static_cast<std::size_t>(e) * nqp;
+    ctx.time = time_;
+    ctx.dt = dt_;
+    if (hs > 0) {
+      ctx.history_committed = history_committed_.data() + static_cast<std::size_t>(e) * nqp * hs;
+      ctx.history_trial = history_trial_.data() + static_cast<std::size_t>(e) * nqp * hs;
+    }
+    TetElementView view;
+    view.nen = nen;
+    view.nqp = nqp;
+    view.gradients = space_.gradients(e, 0);
+    view.dv = space_.dv(e);
+    TetKernelStatus ks;
+    if (mixed) {
+      view.pressure = pressure_values_.data() + static_cast<std::size_t>(e) * nqp * pressure_size_;
+      ks = tet_mixed_kernel(view, ctx, pressure_size_, mass_[e], want_tangent, ws);
+    } else {
+      ks = tet_displacement_kernel(view, ctx, want_tangent, ws);
+    }
+    if (!ks.ok()) {
+      return solver::EvaluationStatus::failure(describe_failure(e, ks));
+    }
+    const auto& dofs = element_dofs_[e];
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      f_int_[dofs[i]] += ws.fe[static_cast<Eigen::Index>(i)];
+    }
+    if (want_tangent) {
+      pattern_.add_element_matrix(e, ws.ke, values);
+    }
+    return solver::EvaluationStatus::success();
+  };
+  return solver::for_each_element_coloured(colouring_, options_.threads, body);
+}
+
+// r = f_int(u) - f_ext(t) on the free DOFs, K = dr/du (NonlinearProblem::evaluate).
+solver::EvaluationStatus TetProblem::evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& residual,
+                                              solver::SparseMatrix* tangent) {
+  if (u.size() != size()) {
+    throw std::invalid_argument("TetProblem::evaluate: vector of size " + std::to_string(u.size()) +
+                                ", expected " + std::to_string(size()));
+  }
+  trial_valid_ = false;
+  u_full_ = full_displacement(u);
+  double* values = nullptr;
+  if (tangent != nullptr) {
+    if (!pattern_.matches(*tangent)) {
+      *tangent = pattern_.make_matrix();
+    } else {
+      std::fill(tangent->valuePtr(), tangent->valuePtr() + tangent->nonZeros(), 0.0);
+    }
+    values = tangent->valuePtr();
+  }
+  const solver::EvaluationStatus status = assemble(u_full_, tangent != nullptr, values);
+  if (!status.ok) {
+    return status;
+  }
+  residual.resize(num_free_);
+  for (int d = 0; d < f_int_.size(); ++d) {
+    if (free_index_[d] >= 0) {
+      residual[free_index_[d]] = f_int_[d] - f_ext_[d];
+    }
+  }
+  if (!residual.allFinite()) {
+    return solver::EvaluationStatus::failure(
+        "TetProblem: non-finite residual at t = " + std::to_string(time_) + " s");
+  }
+  last_u_ = u;
+  trial_valid_ = true;
+  return solver::EvaluationStatus::success();
+}
+
+// Makes the trial history at u the committed one (re-evaluating when the last evaluation was
+// elsewhere).
+void TetProblem::commit_step(const Eigen::VectorXd& u) {
+  if (!(trial_valid_ && last_u_.size() == u.size() && last_u_ == u)) {
+    Eigen::VectorXd r;
+    const solver::EvaluationStatus status = evaluate(u, r, nullptr);
+    if (!status.ok) {
+      throw std::runtime_error("TetProblem::commit_step: the state to commit does not evaluate: " +
+                               status.message);
+    }
+  }
+  history_previous_.swap(history_committed_);
+  history_committed_ = history_trial_;
+  committed_full_ = full_displacement(u);
+  committed_time_ = time_;
+  committed_dt_ = dt_;
+}
+
+solver::EvaluationStatus TetProblem::internal_force(const Eigen::VectorXd& u,
+                                                    Eigen::VectorXd& f_int) {
+  if (u.size() != size()) {
+    throw std::invalid_argument("TetProblem::internal_force: vector of size " +
+                                std::to_string(u.size()) + ", expected " + std::to_string(size()));
+  }
+  trial_valid_ = false;
+  u_full_ = full_displacement(u);
+  const solver::EvaluationStatus status = assemble(u_full_, false, nullptr);
+  if (status.ok) {
+    f_int = f_int_;
+    last_u_ = u;
+    trial_valid_ = true;
+  }
+  return status;
+}
+
+Eigen::Vector3d TetProblem::sum_over_nodes(const Eigen::VectorXd& f_full,
+                                           std::span<const int> nodes) const {
+  if (f_full.size() != 3 * space_.mesh().num_nodes()) {
+    throw std::invalid_argument("sum_over_nodes: vector of size " + std::to_string(f_full.size()) +
+                                ", expected " + std::to_string(3 * space_.mesh().num_nodes()));
+  }
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int n : nodes) {
+    if (n < 0 || n >= space_.mesh().num_nodes()) {
+      throw std::invalid_argument("sum_over_nodes: node " + std::to_string(n) + " out of range");
+    }
+    sum += f_full.segment<3>(3 * n);
+  }
+  return sum;
+}
+
+std::span<const double> TetProblem::committed_history(int element, int point) const {
+  const std::size_t i = static_cast<std::size_t>(element) * space_.points_per_element() + point;
+  return {history_committed_.data() + i * history_size_, static_cast<std::size_t>(history_size_)};
+}
+
+std::vector<Eigen::Matrix3d> TetProblem::deformation_gradients(
+    const Eigen::VectorXd& u_full) const {
+  std::vector<Eigen::Matrix3d> out;
+  out.reserve(space_.num_points());
+  const int nen = space_.nodes_per_element();
+  for (int e = 0; e < space_.num_elements(); ++e) {
+    const auto el = space_.mesh().element(e);
+    for (int q = 0; q < space_.points_per_element(); ++q) {
+      Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+      const Eigen::Vector3d* g = space_.gradients(e, q);
+      for (int a = 0; a < nen; ++a) {
+        F.noalias() += u_full.segment<3>(3 * el[a]) * g[a].transpose();
+      }
+      out.push_back(F);
+    }
+  }
+  return out;
+}
+
+double TetProblem::current_volume(const Eigen::VectorXd& u_full) const {
+  const std::vector<Eigen::Matrix3d> F = deformation_gradients(u_full);
+  double v = 0.0;
+  for (int e = 0; e < space_.num_elements(); ++e) {
+    for (int q = 0; q < space_.points_per_element(); ++q) {
+      v += F[static_cast<std::size_t>(e) * space_.points_per_element() + q].determinant() *
+           space_.dv(e)[q];
+    }
+  }
+  return v;
+}
+
+}  // namespace isomuscle::tet

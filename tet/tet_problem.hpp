@@ -1,0 +1,150 @@
+#pragma once
+// The nonlinear problem on a tetrahedral mesh (DESIGN "The way data flows", tet side): a material
+// law at every quadrature point, Dirichlet conditions on node sets and a dead body force, offered
+// to Newton and the time stepper through solver::NonlinearProblem. Mirrors iga::Problem:
+// * unknowns: the free DOFs (3 per node, DOF 3 n + k), prescribed values set in begin_step;
+// * evaluate(): r = f_int(u) - f_ext(t), K = dr/du, assembled with a pattern and scatter map built
+//   once, by element colouring (deterministic whatever the thread count);
+// * formulation: displacement, or the condensed mixed u–p–J (tet_kernels.hpp), automatically
+//   mixed for laws with a volumetric split (use 10-node elements: 4-node elements with a constant
+//   dilatation are the displacement formulation again and lock);
+// * history per quadrature point, committed + trial; failures (J <= 0, J~ <= 0, a failed local
+//   material solve) return a failure status naming the element, point, position and value.
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <array>
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "materials/material_law.hpp"
+#include "solver/element_colouring.hpp"
+#include "solver/matrix_storage.hpp"
+#include "solver/nonlinear_problem.hpp"
+#include "solver/sparsity_pattern.hpp"
+#include "tet/tet_kernels.hpp"
+#include "tet/tet_space.hpp"
+
+namespace isomuscle::tet {
+
+enum class TetFormulation { automatic, displacement, mixed };
+const char* to_string(TetFormulation f);
+// "automatic" | "displacement" | "mixed"; throws std::invalid_argument listing the choices.
+TetFormulation parse_tet_formulation(std::string_view name);
+
+// A field of the reference position X (m) and time t (s).
+using VectorField = std::function<Eigen::Vector3d(const Eigen::Vector3d& X, double t)>;
+
+// Prescribed displacement (m) on the components marked true of the nodes listed; value empty
+// means zero. A later condition overrides an earlier one on the same DOF.
+struct TetDirichlet {
+  std::vector<int> nodes;
+  std::array<bool, 3> components{true, true, true};
+  VectorField value;
+};
+
+struct TetProblemOptions {
+  TetFormulation formulation = TetFormulation::automatic;
+  // p~, J~ per element: 0 = constant (mean dilatation), 1 = linear discontinuous.
+  int pressure_degree = 0;
+  int threads = 0;  // 0 = OpenMP default
+  solver::MatrixStorage storage = solver::MatrixStorage::Upper;
+  solver::ScatterMode scatter = solver::ScatterMode::Stored;
+  // Throws std::invalid_argument naming the option.
+  void validate() const;
+};
+
+// Material state at one quadrature point of the committed state, for outputs.
+struct TetPointState {
+  Eigen::Vector3d X = Eigen::Vector3d::Zero();             // reference position, m
+  Eigen::Vector3d displacement = Eigen::Vector3d::Zero();  // m
+  Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+  double J = 1.0;                                    // det F
+  double J_bar = 1.0;                                // J~ (mixed formulation), else J
+  double p_bar = 0.0;                                // p~ (mixed formulation), else 0, Pa
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();       // second Piola–Kirchhoff, Pa
+  Eigen::Matrix3d cauchy = Eigen::Matrix3d::Zero();  // sigma = F S F^T / J (thesis 5.41), Pa
+  Eigen::Vector3d fibre = Eigen::Vector3d::UnitZ();  // reference N
+  Eigen::Vector3d fibre_deformed = Eigen::Vector3d::UnitZ();  // F N / |F N| (thesis 5.30)
+  double fibre_stretch = 1.0;                                 // |F N|
+};
+
+class TetProblem : public solver::NonlinearProblem {
+ public:
+  // space and law must outlive the problem. fibres: one unit vector per quadrature point
+  // (tet_fibres.hpp). body_force: dead load per unit reference volume (N/m^3), may be empty.
+  // Throws std::invalid_argument for inconsistent sizes, bad options or node indices.
+  TetProblem(const TetSpace& space, const materials::MaterialLaw& law,
+             std::vector<Eigen::Vector3d> fibres, std::vector<TetDirichlet> conditions,
+             VectorField body_force = {}, TetProblemOptions options = {});
+
+  // --- solver::NonlinearProblem ---
+  int size() const override { return num_free_; }
+  void begin_step(double time, double dt) override;
+  solver::EvaluationStatus evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& residual,
+                                    solver::SparseMatrix* tangent) override;
+  void commit_step(const Eigen::VectorXd& u) override;
+
+  TetFormulation formulation() const { return formulation_; }  // resolved, never automatic
+  const TetSpace& space() const { return space_; }
+  int num_colours() const { return colouring_.n_colours(); }
+  const solver::SparsityPattern& pattern() const { return pattern_; }
+  // Free index of DOF 3 node + component, or solver::kPrescribed.
+  int free_index(int node, int component) const { return free_index_[3 * node + component]; }
+
+  // Full displacement (3 per node) of free values u at the current time.
+  Eigen::VectorXd full_displacement(const Eigen::VectorXd& u) const;
+  const Eigen::VectorXd& committed_displacement() const { return committed_full_; }
+  std::span<const double> committed_history(int element, int point) const;
+  double committed_time() const { return committed_time_; }
+  // State at quadrature point q of element e in the committed state: the element kernel re-run at
+  // the committed displacement with the history from before the committed step (so the converged
+  // stress is reproduced exactly, also for rate-dependent laws). Throws std::invalid_argument for
+  // indices out of range, std::runtime_error when the law fails there.
+  TetPointState state_at_point(int e, int q) const;
+  // F at every quadrature point (element-major) of a full displacement vector.
+  std::vector<Eigen::Matrix3d> deformation_gradients(const Eigen::VectorXd& u_full) const;
+  // Current volume int J dV (m^3).
+  double current_volume(const Eigen::VectorXd& u_full) const;
+  const Eigen::VectorXd& external_force() const { return f_ext_; }
+  // Internal force at ALL DOFs (3 per node, N) for free values u: an assembly pass without
+  // tangent. The trial history is scratch; the committed state does not change.
+  solver::EvaluationStatus internal_force(const Eigen::VectorXd& u, Eigen::VectorXd& f_int);
+  // Sum over nodes of a full force vector (N): with f_int - f_ext it is the reaction on a
+  // supported node set.
+  Eigen::Vector3d sum_over_nodes(const Eigen::VectorXd& f_full, std::span<const int> nodes) const;
+
+ private:
+  solver::EvaluationStatus assemble(const Eigen::VectorXd& u_full, bool want_tangent,
+                                    double* values);
+  std::string describe_failure(int e, const TetKernelStatus& s) const;
+
+  const TetSpace& space_;
+  const materials::MaterialLaw& law_;
+  std::vector<Eigen::Vector3d> fibres_;
+  std::vector<TetDirichlet> conditions_;
+  VectorField body_force_;
+  TetProblemOptions options_;
+  TetFormulation formulation_ = TetFormulation::displacement;
+  int num_free_ = 0;
+  std::vector<int> free_index_;  // per DOF
+  int pressure_size_ = 1;
+  std::vector<double> pressure_values_;  // nel x nqp x m
+  std::vector<Eigen::LLT<Eigen::MatrixXd>> mass_;
+  std::vector<std::vector<int>> element_dofs_;
+  solver::SparsityPattern pattern_;
+  solver::ElementColouring colouring_;
+  std::vector<TetWorkspace> workspaces_;
+  int history_size_ = 0;
+  std::vector<double> history_committed_, history_trial_;
+  std::vector<double> history_previous_;  // committed history before the last commit
+  double time_ = 0.0, dt_ = 0.0;
+  double committed_time_ = 0.0, committed_dt_ = 0.0;
+  Eigen::VectorXd prescribed_;  // full vector: prescribed values at time_, zero elsewhere
+  Eigen::VectorXd f_ext_, f_int_, u_full_, committed_full_, last_u_;
+  bool trial_valid_ = false;
+};
+
+}  // namespace isomuscle::tet
