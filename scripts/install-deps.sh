@@ -15,6 +15,7 @@ packages=(
   libcli11-dev                      # command line
   nlohmann-json3-dev                # summary.json, --json output
   libgtest-dev libgmock-dev         # unit tests
+  occt-misc                         # real IGES files written by other tools (hammer.iges) for reader tests
   libbenchmark-dev                  # bench/
   python3 python3-numpy python3-matplotlib  # validation figures
 )
