@@ -8,5 +8,8 @@ bash "$root/scripts/build.sh" release
 if [ "${ISOMUSCLE_SKIP_ASAN:-0}" != "1" ]; then
   bash "$root/scripts/build.sh" asan
   # The sanitizer run covers the unit tests; whole-run (slow) tests carry the label "slow".
-  (cd "$root/build/asan" && LSAN_OPTIONS=suppressions="$root/scripts/lsan.supp" ctest --output-on-failure -j "$(nproc)" -LE slow)
+  (cd "$root/build/asan" && LSAN_OPTIONS=suppressions="$root/scripts/lsan.supp" ctest --output-on-failure -j "$(nproc)" -LE "slow|tet")
+  # The tetrahedral tests call gmsh, whose allocations at exit have not been audited for
+  # LeakSanitizer yet: they run with address and UB checks but without leak detection.
+  (cd "$root/build/asan" && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j "$(nproc)" -L tet -LE slow)
 fi
