@@ -43,6 +43,15 @@ class NonlinearProblem {
   virtual EvaluationStatus evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& residual,
                                     SparseMatrix* tangent) = 0;
 
+  // Predictor for the step set up by begin_step, called once before Newton: may move u (the
+  // committed free values on entry) towards the solution at the new time, e.g. the linearised
+  // response to the prescribed increment (iga::Problem). On failure u must be left unchanged;
+  // Newton then starts from it. The default predicts nothing.
+  virtual EvaluationStatus predict(Eigen::VectorXd& u) {
+    (void)u;
+    return EvaluationStatus::success();
+  }
+
   // Makes the state at u (material history) the committed state: called once per converged step.
   virtual void commit_step(const Eigen::VectorXd& u) = 0;
 };

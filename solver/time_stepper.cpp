@@ -130,6 +130,8 @@ TimeStepperResult TimeStepper::run(NonlinearProblem& problem, Eigen::VectorXd& u
 
     ++attempts;
     problem.begin_step(t_new, dt);
+    // A failed predictor leaves u unchanged: Newton then starts from the committed state.
+    (void)problem.predict(u);
     const NewtonResult newton = newton_.solve(problem, u);
     result.newton_iterations += newton.iterations;
 

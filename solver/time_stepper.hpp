@@ -1,8 +1,9 @@
 #pragma once
 // Quasi-static time (load) stepping over [start_time, end_time] with adaptive step size:
 //
-//   for each step t -> t + dt: problem.begin_step(t + dt, dt); Newton from the last converged u;
-//   converged  -> problem.commit_step(u), callback, and after easy_steps_to_grow consecutive steps
+//   for each step t -> t + dt: problem.begin_step(t + dt, dt); problem.predict(u); Newton from
+//   there; converged  -> problem.commit_step(u), callback, and after easy_steps_to_grow consecutive
+//   steps
 //                 of at most easy_iterations Newton iterations dt <- min(growth_factor dt, max_dt);
 //   failed     -> (diverged, too many iterations, evaluation failure, line search or linear solver
 //                 failure) the cut is recorded, u is restored to the last converged state and the

@@ -1,0 +1,131 @@
+// `isomuscle run SCENE.toml [--out DIR] [--threads N]`: one isogeometric run of a scene into a
+// results folder (io/iga_run.hpp), by default runs/<scene name> under the current directory.
+// Exit codes: 0 converged; 1 the run failed (set-up or a step that would not converge: the folder
+// holds the results up to the last converged step and summary.json the reason); 2 the scene file
+// is wrong (the message reads "scene.toml:LINE: ...").
+//
+// Progress: on a terminal one line, rewritten in place after every step (time, step, Newton
+// iterations, residual); otherwise (a log file, a pipe) one plain line per step.
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include "app/command_registry.hpp"
+#include "io/iga_run.hpp"
+#include "io/scene_loader.hpp"
+#include "io/scene_reader.hpp"
+
+namespace isomuscle::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunArgs {
+  std::string scene;
+  std::string out;
+  int threads = -1;
+};
+
+std::string progress_text(const io::RunProgress& p) {
+  std::ostringstream line;
+  line << "t = " << std::setprecision(4) << std::defaultfloat << p.time << " / " << p.end_time
+       << " s  step " << p.step << "  dt " << std::setprecision(3) << p.dt << "  Newton "
+       << p.newton_iterations << "  |r| " << std::scientific << std::setprecision(2)
+       << p.initial_residual << " -> " << p.residual;
+  if (p.step_cuts > 0)
+    line << "  cuts " << p.step_cuts;
+  return line.str();
+}
+
+int run(const RunArgs& args) {
+  io::Scene scene;
+  try {
+    scene = io::load_scene(args.scene);
+  } catch (const io::SceneError& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << args.scene << ": " << e.what() << "\n";
+    return 2;
+  }
+  io::RunOptions options;
+  options.out_dir =
+      args.out.empty() ? fs::path("runs") / fs::path(args.scene).stem() : fs::path(args.out);
+  options.threads = args.threads;
+  const bool terminal = isatty(fileno(stderr)) != 0;
+  bool line_open = false;
+  options.log = [&](const std::string& message) {
+    if (line_open) {
+      std::cerr << "\n";
+      line_open = false;
+    }
+    std::cerr << message << "\n";
+  };
+  options.progress = [&](const io::RunProgress& p) {
+    if (terminal) {
+      std::cerr << "\r\033[K" << progress_text(p) << std::flush;
+      line_open = true;
+    } else {
+      std::cerr << progress_text(p) << "\n";
+    }
+  };
+  std::cerr << "isomuscle run: " << args.scene << " -> " << options.out_dir.string() << "\n";
+  io::RunResult result;
+  try {
+    result = io::run_iga(scene, options);
+  } catch (const std::exception& e) {
+    if (line_open)
+      std::cerr << "\n";
+    std::cerr << "isomuscle run: error: " << e.what() << "\n";
+    return 1;
+  }
+  if (line_open)
+    std::cerr << "\n";
+  const io::RunSummary& s = result.summary;
+  if (result.setup_failed) {
+    std::cerr << "isomuscle run: error: " << result.failure_reason << "\n"
+              << "(summary: " << result.summary_path.string() << ")\n";
+    return 1;
+  }
+  if (!result.converged) {
+    std::cerr << "isomuscle run: FAILED at t = " << result.time_reached
+              << " s: " << result.failure_reason << "\n"
+              << "partial results (" << s.steps
+              << " converged steps, up to t = " << result.time_reached << " s) in "
+              << result.out_dir.string() << "\n";
+    return 1;
+  }
+  std::cout << "converged: " << s.steps << " steps, " << s.newton_iterations
+            << " Newton iterations, " << s.step_cuts.size() << " step cuts, " << s.dofs << " DOFs, "
+            << std::setprecision(3) << s.wall_seconds.total << " s\n";
+  if (s.max_displacement_m)
+    std::cout << "max |u| = " << std::setprecision(6) << *s.max_displacement_m << " m\n";
+  if (s.volume_initial_m3 && s.volume_final_m3) {
+    std::cout << "volume " << std::setprecision(8) << *s.volume_initial_m3 << " -> "
+              << *s.volume_final_m3 << " m^3 (change " << std::setprecision(3)
+              << 100.0 * (*s.volume_final_m3 / *s.volume_initial_m3 - 1.0) << " %)\n";
+  }
+  std::cout << "results in " << result.out_dir.string()
+            << " (summary.json, fields.xdmf for ParaView, probes.csv, newton.csv)\n";
+  return 0;
+}
+
+const CommandRegistration registration{[](CLI::App& app) {
+  auto args = std::make_shared<RunArgs>();
+  CLI::App* cmd = app.add_subcommand("run", "Run a scene (TOML) into a results folder");
+  cmd->add_option("scene", args->scene, "Scene file (.toml)")->required();
+  cmd->add_option("--out", args->out, "Results folder (default: runs/<scene name>)");
+  cmd->add_option("--threads", args->threads, "Assembly threads (0: all cores; default: scene)")
+      ->check(CLI::Range(0, 4096));
+  cmd->callback([args] { set_exit_code(run(*args)); });
+}};
+
+}  // namespace
+
+}  // namespace isomuscle::app

@@ -1,0 +1,451 @@
+#include "iga/problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace isomuscle::iga {
+
+const char* to_string(Formulation f) {
+  switch (f) {
+    case Formulation::automatic:
+      return "automatic";
+    case Formulation::displacement:
+      return "displacement";
+    case Formulation::mixed:
+      return "mixed";
+  }
+  return "?";
+}
+
+Formulation parse_formulation(std::string_view name) {
+  if (name == "automatic") {
+    return Formulation::automatic;
+  }
+  if (name == "displacement") {
+    return Formulation::displacement;
+  }
+  if (name == "mixed") {
+    return Formulation::mixed;
+  }
+  throw std::invalid_argument("unknown formulation '" + std::string(name) +
+                              "' (valid: automatic, displacement, mixed)");
+}
+
+void ProblemOptions::validate() const {
+  if (pressure_degree < 0 || pressure_degree > 4) {
+    throw std::invalid_argument("pressure_degree " + std::to_string(pressure_degree) +
+                                " outside the valid range 0..4 (0 = mean dilatation)");
+  }
+  if (threads < 0) {
+    throw std::invalid_argument("threads " + std::to_string(threads) +
+                                " must be >= 0 (0 = OpenMP default)");
+  }
+  if (!(mixed_threshold > 0.0)) {
+    throw std::invalid_argument(
+        "mixed_threshold (bulk / shear modulus above which 'automatic' "
+        "chooses the mixed formulation) must be > 0");
+  }
+}
+
+Problem::Problem(const Space& space, const DofMap& dofs, const materials::MaterialLaw& law,
+                 std::vector<Eigen::Vector3d> fibres, const DirichletConditions& conditions,
+                 Loads loads, ProblemOptions options)
+    : space_(space),
+      dofs_(dofs),
+      law_(law),
+      fibres_(std::move(fibres)),
+      loads_(std::move(loads)),
+      options_(options) {
+  options_.validate();
+  if (dofs_.num_control_points() != space_.volume().num_control_points()) {
+    throw std::invalid_argument(
+        "iga::Problem: the DofMap has " + std::to_string(dofs_.num_control_points()) +
+        " control points, the space " + std::to_string(space_.volume().num_control_points()));
+  }
+  switch (options_.formulation) {
+    case Formulation::automatic:
+      formulation_ = law_.has_volumetric_split() &&
+                             law_.bulk_modulus() >= options_.mixed_threshold * law_.shear_modulus()
+                         ? Formulation::mixed
+                         : Formulation::displacement;
+      break;
+    case Formulation::displacement:
+      formulation_ = Formulation::displacement;
+      break;
+    case Formulation::mixed:
+      if (!law_.has_volumetric_split()) {
+        throw std::invalid_argument("formulation 'mixed' needs a law with a volumetric split; '" +
+                                    law_.name() + "' has none (use 'displacement' or 'automatic')");
+      }
+      formulation_ = Formulation::mixed;
+      break;
+  }
+  if (static_cast<int>(fibres_.size()) != space_.num_points()) {
+    throw std::invalid_argument("iga::Problem: " + std::to_string(fibres_.size()) +
+                                " fibre directions for " + std::to_string(space_.num_points()) +
+                                " quadrature points");
+  }
+  for (std::size_t i = 0; i < fibres_.size(); ++i) {
+    if (!fibres_[i].allFinite() || std::abs(fibres_[i].norm() - 1.0) > 1e-8) {
+      throw std::invalid_argument("iga::Problem: fibre direction " + std::to_string(i) +
+                                  " is not a finite unit vector");
+    }
+  }
+  constraints_ = ConstrainedDofs(dofs_, conditions);
+
+  const int nel = space_.num_elements();
+  const int nen = space_.functions_per_element();
+  element_all_dofs_.resize(nel);
+  std::vector<std::vector<int>> free_lists(nel);
+  for (int e = 0; e < nel; ++e) {
+    const auto cps = space_.control_points(e);
+    auto& all = element_all_dofs_[e];
+    all.resize(3 * nen);
+    free_lists[e].resize(3 * nen);
+    for (int a = 0; a < nen; ++a) {
+      for (int k = 0; k < 3; ++k) {
+        const int dof = DofMap::dof(dofs_.node(cps[a]), k);
+        all[3 * a + k] = dof;
+        free_lists[e][3 * a + k] = constraints_.free_index(dof);
+      }
+    }
+  }
+  pattern_ = solver::SparsityPattern(solver::ElementDofs(free_lists), constraints_.num_free(),
+                                     options_.storage, options_.scatter);
+  colouring_ = solver::ElementColouring(solver::ElementDofs(element_all_dofs_));
+  if (formulation_ == Formulation::mixed) {
+    pressure_ = PressureSpace(space_, options_.pressure_degree);
+    base_.resize(nel, pressure_.size(), 3 * nen);
+    next_base_.resize(nel, pressure_.size(), 3 * nen);
+  }
+  set_threads(options_.threads);
+
+  history_size_ = law_.history_size();
+  const std::size_t nh = static_cast<std::size_t>(space_.num_points()) * history_size_;
+  history_committed_.assign(nh, 0.0);
+  if (history_size_ > 0) {
+    for (int i = 0; i < space_.num_points(); ++i) {
+      law_.initial_history(std::span<double>(
+          history_committed_.data() + static_cast<std::size_t>(i) * history_size_, history_size_));
+    }
+  }
+  history_trial_ = history_committed_;
+  history_previous_ = history_committed_;
+  committed_full_.setZero(dofs_.num_dofs());
+  committed_free_.setZero(constraints_.num_free());
+  u_full_.setZero(dofs_.num_dofs());
+  f_int_.setZero(dofs_.num_dofs());
+  begin_step(0.0, 0.0);
+}
+
+Problem::~Problem() = default;
+
+void Problem::MixedBaseStorage::resize(int nel, int m, int n) {
+  const std::size_t e = static_cast<std::size_t>(nel);
+  ue.assign(e * n, 0.0);
+  theta.assign(e * m, 0.0);
+  pi.assign(e * m, 0.0);
+  R_pi.assign(e * m, 0.0);
+  R_theta.assign(e * m, 0.0);
+  G.assign(e * m * n, 0.0);
+  K_JJ.assign(e * m * m, 0.0);
+}
+
+void Problem::set_threads(int threads) {
+  if (threads < 0) {
+    throw std::invalid_argument("threads must be >= 0 (0 = OpenMP default)");
+  }
+  options_.threads = threads;
+  const int n = solver::resolve_thread_count(threads);
+  const int m = formulation_ == Formulation::mixed ? pressure_.size() : 1;
+  workspaces_.assign(
+      n, ElementWorkspace(space_.functions_per_element(), space_.points_per_element(), m));
+}
+
+// Prescribed values and dead loads at t = time (NonlinearProblem::begin_step).
+void Problem::begin_step(double time, double dt) {
+  if (!std::isfinite(time) || !std::isfinite(dt) || dt < 0.0) {
+    throw std::invalid_argument("iga::Problem::begin_step: time and dt must be finite, dt >= 0");
+  }
+  time_ = time;
+  dt_ = dt;
+  trial_valid_ = false;
+  base_valid_ = false;  // the first iterate of a step projects exactly
+  if (loads_.empty()) {
+    f_ext_.setZero(dofs_.num_dofs());
+  } else {
+    assemble_external_forces(space_, dofs_, loads_, time_, f_ext_);
+  }
+}
+
+std::string Problem::describe_failure(int e, const KernelStatus& s) const {
+  const Element& el = space_.element(e);
+  std::ostringstream msg;
+  msg << "element " << e << " (knot spans " << el.span[0] << ", " << el.span[1] << ", "
+      << el.span[2] << ")";
+  if (s.point >= 0) {
+    const Eigen::Vector3d& X = space_.position(e, s.point);
+    const Eigen::Vector3d& xi = space_.parametric(e, s.point);
+    msg << ", quadrature point " << s.point << " at X = (" << X[0] << ", " << X[1] << ", " << X[2]
+        << "), xi = (" << xi[0] << ", " << xi[1] << ", " << xi[2] << ")";
+  }
+  msg << ", t = " << time_ << " s: ";
+  switch (s.kind) {
+    case KernelStatus::Kind::inverted:
+      msg << "J = det F = " << s.value << " <= 0 (inverted)";
+      break;
+    case KernelStatus::Kind::inverted_dilatation:
+      msg << "projected dilatation J~ = " << s.value << " <= 0";
+      break;
+    case KernelStatus::Kind::material:
+      msg << "material law '" << law_.name() << "' failed (" << materials::to_string(s.material)
+          << ") at J = " << s.value;
+      break;
+    case KernelStatus::Kind::not_finite:
+      msg << "non-finite stress or tangent from law '" << law_.name() << "' at J = " << s.value;
+      break;
+    case KernelStatus::Kind::ok:
+      msg << "ok";
+      break;
+  }
+  return msg.str();
+}
+
+// Element loop: kernel per element (into the thread's workspace), scatter by colour (DESIGN 2, 5).
+solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool want_tangent,
+                                           double* tangent_values, bool use_base,
+                                           const Eigen::VectorXd* increment,
+                                           Eigen::VectorXd* K_increment) {
+  if (K_increment != nullptr) {
+    K_increment->setZero(dofs_.num_dofs());
+  }
+  f_int_.setZero(dofs_.num_dofs());
+  const int nqp = space_.points_per_element();
+  const bool mixed = formulation_ == Formulation::mixed;
+  const bool from_base = mixed && use_base && base_valid_;
+  const bool store_base = mixed && want_tangent;
+  const std::size_t m = mixed ? static_cast<std::size_t>(pressure_.size()) : 0;
+  const std::size_t n = 3 * static_cast<std::size_t>(space_.functions_per_element());
+  const std::size_t hs = static_cast<std::size_t>(history_size_);
+  auto body = [&](int e, int thread) -> solver::EvaluationStatus {
+    ElementWorkspace& ws = workspaces_[thread];
+    const auto cps = space_.control_points(e);
+    for (int a = 0; a < static_cast<int>(cps.size()); ++a) {
+      ws.ue.col(a) = u_full.segment<3>(3 * dofs_.node(cps[a]));
+    }
+    MaterialContext ctx;
+    ctx.law = &law_;
+    ctx.fibres = fibres_.data() + static_cast<std::size_t>(e) * nqp;
+    ctx.time = time_;
+    ctx.dt = dt_;
+    if (hs > 0) {
+      ctx.history_committed = history_committed_.data() + static_cast<std::size_t>(e) * nqp * hs;
+      ctx.history_trial = history_trial_.data() + static_cast<std::size_t>(e) * nqp * hs;
+    }
+    const ElementView view = element_view(space_, e);
+    const std::size_t E = static_cast<std::size_t>(e);
+    MixedBase base;
+    if (from_base) {
+      base.ue = base_.ue.data() + E * n;
+      base.theta = base_.theta.data() + E * m;
+      base.pi = base_.pi.data() + E * m;
+      base.R_pi = base_.R_pi.data() + E * m;
+      base.R_theta = base_.R_theta.data() + E * m;
+      base.G = base_.G.data() + E * m * n;
+      base.K_JJ = base_.K_JJ.data() + E * m * m;
+    }
+    const KernelStatus ks =
+        mixed ? mixed_kernel(view, ctx, pressure_, e, from_base ? &base : nullptr, want_tangent, ws)
+              : displacement_kernel(view, ctx, want_tangent, ws);
+    if (!ks.ok()) {
+      return solver::EvaluationStatus::failure(describe_failure(e, ks));
+    }
+    if (store_base) {
+      std::copy_n(ws.ue.data(), n, next_base_.ue.data() + E * n);
+      std::copy_n(ws.theta.data(), m, next_base_.theta.data() + E * m);
+      std::copy_n(ws.pi.data(), m, next_base_.pi.data() + E * m);
+      std::copy_n(ws.R_pi.data(), m, next_base_.R_pi.data() + E * m);
+      std::copy_n(ws.R_theta.data(), m, next_base_.R_theta.data() + E * m);
+      std::copy_n(ws.G.data(), m * n, next_base_.G.data() + E * m * n);
+      std::copy_n(ws.K_JJ.data(), m * m, next_base_.K_JJ.data() + E * m * m);
+    }
+    const auto& all = element_all_dofs_[e];
+    for (std::size_t i = 0; i < all.size(); ++i) {
+      f_int_[all[i]] += ws.fe[static_cast<Eigen::Index>(i)];
+    }
+    if (want_tangent) {
+      pattern_.add_element_matrix(e, ws.ke, tangent_values);
+      if (increment != nullptr) {
+        for (std::size_t j = 0; j < all.size(); ++j) {
+          const double d = (*increment)[all[j]];
+          if (d != 0.0) {
+            for (std::size_t i = 0; i < all.size(); ++i) {
+              (*K_increment)[all[i]] +=
+                  ws.ke(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) * d;
+            }
+          }
+        }
+      }
+    }
+    return solver::EvaluationStatus::success();
+  };
+  const solver::EvaluationStatus status =
+      solver::for_each_element_coloured(colouring_, options_.threads, body);
+  if (status.ok && store_base) {
+    std::swap(base_, next_base_);
+    base_valid_ = true;
+  }
+  return status;
+}
+
+// r = f_int(u) - f_ext(t) on the free DOFs, K = dr/du (NonlinearProblem::evaluate).
+solver::EvaluationStatus Problem::evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& residual,
+                                           solver::SparseMatrix* tangent) {
+  if (u.size() != size()) {
+    throw std::invalid_argument("iga::Problem::evaluate: vector of size " +
+                                std::to_string(u.size()) + ", expected " + std::to_string(size()));
+  }
+  trial_valid_ = false;
+  constraints_.expand(u, time_, u_full_);
+  double* values = nullptr;
+  if (tangent != nullptr) {
+    if (!pattern_.matches(*tangent)) {
+      *tangent = pattern_.make_matrix();
+    } else {
+      std::fill(tangent->valuePtr(), tangent->valuePtr() + tangent->nonZeros(), 0.0);
+    }
+    values = tangent->valuePtr();
+  }
+  const solver::EvaluationStatus status = assemble(u_full_, tangent != nullptr, values, true);
+  if (!status.ok) {
+    return status;
+  }
+  Eigen::VectorXd diff = f_int_ - f_ext_;
+  constraints_.restrict_to_free(diff, residual);
+  if (!residual.allFinite()) {
+    return solver::EvaluationStatus::failure(
+        "iga::Problem: non-finite residual at t = " + std::to_string(time_) + " s");
+  }
+  last_u_ = u;
+  last_time_ = time_;
+  trial_valid_ = true;
+  return solver::EvaluationStatus::success();
+}
+
+// Makes the trial history at u the committed one (re-evaluating when the last evaluation was
+// elsewhere), and keeps the history it replaces for state_at().
+void Problem::commit_step(const Eigen::VectorXd& u) {
+  if (!(trial_valid_ && last_time_ == time_ && last_u_.size() == u.size() && last_u_ == u)) {
+    Eigen::VectorXd r;
+    const solver::EvaluationStatus status = evaluate(u, r, nullptr);
+    if (!status.ok) {
+      throw std::runtime_error(
+          "iga::Problem::commit_step: the state to commit does not evaluate: " + status.message);
+    }
+  }
+  history_previous_.swap(history_committed_);
+  history_committed_ = history_trial_;
+  base_valid_ = false;
+  constraints_.expand(u, time_, committed_full_);
+  committed_free_ = u;
+  committed_time_ = time_;
+  committed_dt_ = dt_;
+}
+
+// K_ff du_f = -(f_int(u_n) + K_fp du_p - f_ext(t_n+1))_f at the committed state (header).
+solver::EvaluationStatus Problem::predict(Eigen::VectorXd& u) {
+  if (u.size() != size()) {
+    throw std::invalid_argument("iga::Problem::predict: vector of size " +
+                                std::to_string(u.size()) + ", expected " + std::to_string(size()));
+  }
+  if (size() == 0) {
+    return solver::EvaluationStatus::success();
+  }
+  Eigen::VectorXd old_full;
+  constraints_.expand(u, committed_time_, old_full);
+  Eigen::VectorXd new_full;
+  constraints_.expand(u, time_, new_full);
+  const Eigen::VectorXd increment = new_full - old_full;  // zero on the free DOFs
+  if (!pattern_.matches(predictor_matrix_)) {
+    predictor_matrix_ = pattern_.make_matrix();
+  } else {
+    std::fill(predictor_matrix_.valuePtr(),
+              predictor_matrix_.valuePtr() + predictor_matrix_.nonZeros(), 0.0);
+  }
+  Eigen::VectorXd K_increment;
+  trial_valid_ = false;
+  base_valid_ = false;
+  const solver::EvaluationStatus status =
+      assemble(old_full, true, predictor_matrix_.valuePtr(), false, &increment, &K_increment);
+  if (!status.ok) {
+    base_valid_ = false;
+    return solver::EvaluationStatus::failure("predictor: " + status.message);
+  }
+  if (!predictor_solver_) {
+    solver::LinearSolverSettings settings;
+    settings.storage = options_.storage;
+    predictor_solver_ = std::make_unique<solver::LinearSolver>(settings);
+  }
+  const solver::FactorizationReport report = predictor_solver_->factorize(predictor_matrix_);
+  if (!report.ok) {
+    base_valid_ = false;
+    return solver::EvaluationStatus::failure("predictor: " + report.message);
+  }
+  const Eigen::VectorXd full_rhs = f_int_ + K_increment - f_ext_;
+  Eigen::VectorXd rhs;
+  constraints_.restrict_to_free(full_rhs, rhs);
+  Eigen::VectorXd du;
+  predictor_solver_->solve(-rhs, du);
+  if (!du.allFinite()) {
+    base_valid_ = false;
+    return solver::EvaluationStatus::failure("predictor: non-finite increment");
+  }
+  u += du;
+  return solver::EvaluationStatus::success();
+}
+
+Eigen::VectorXd Problem::full_displacement(const Eigen::VectorXd& u) const {
+  Eigen::VectorXd full;
+  constraints_.expand(u, time_, full);
+  return full;
+}
+
+std::span<const double> Problem::committed_history(int element, int point) const {
+  const std::size_t i = static_cast<std::size_t>(element) * space_.points_per_element() +
+                        static_cast<std::size_t>(point);
+  return {history_committed_.data() + i * history_size_, static_cast<std::size_t>(history_size_)};
+}
+
+solver::EvaluationStatus Problem::internal_force(const Eigen::VectorXd& u, Eigen::VectorXd& f_int) {
+  if (u.size() != size()) {
+    throw std::invalid_argument("iga::Problem::internal_force: vector of size " +
+                                std::to_string(u.size()) + ", expected " + std::to_string(size()));
+  }
+  trial_valid_ = false;
+  constraints_.expand(u, time_, u_full_);
+  const solver::EvaluationStatus status = assemble(u_full_, false, nullptr, false);
+  if (status.ok) {
+    f_int = f_int_;
+    last_u_ = u;
+    last_time_ = time_;
+    trial_valid_ = true;
+  }
+  return status;
+}
+
+Eigen::Vector3d Problem::sum_over_nodes(const Eigen::VectorXd& f_full,
+                                        std::span<const int> nodes) const {
+  if (f_full.size() != dofs_.num_dofs()) {
+    throw std::invalid_argument("sum_over_nodes: vector of size " + std::to_string(f_full.size()) +
+                                ", expected " + std::to_string(dofs_.num_dofs()));
+  }
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int n : nodes) {
+    sum += f_full.segment<3>(3 * n);
+  }
+  return sum;
+}
+
+}  // namespace isomuscle::iga

@@ -1,0 +1,211 @@
+#pragma once
+// The isogeometric nonlinear problem (DESIGN "The way data flows"): a NURBS solid as the mesh, a
+// material law at every quadrature point, Dirichlet conditions on control points and dead loads,
+// offered to Newton and the time stepper through solver::NonlinearProblem.
+//
+// * Unknowns: the free DOFs of ConstrainedDofs; prescribed values are set in begin_step.
+// * evaluate(): r = f_int(u) - f_ext(t) on the free DOFs, and K = dr/du when asked, assembled with
+//   a sparsity pattern and scatter map built once (solver::SparsityPattern) by element colouring
+//   (solver::ElementColouring): deterministic whatever the thread count.
+// * Formulation: (a) displacement, or (b) the mixed u–p–J three-field formulation condensed per
+//   element (element_kernels.hpp), automatically (b) for laws with a volumetric split.
+// * History: per quadrature point, committed copy + trial copy (laws with history_size() > 0);
+//   evaluate() writes the trial copy, commit_step() makes it the committed one.
+// * Failures (J <= 0 at a quadrature point, J~ <= 0, a failed local material solve) return a
+//   failure status naming the element, the quadrature point, its position and the value.
+#include <Eigen/Core>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "iga/boundary_conditions.hpp"
+#include "iga/dof_map.hpp"
+#include "iga/element_kernels.hpp"
+#include "iga/field_evaluation.hpp"
+#include "iga/loads.hpp"
+#include "iga/pressure_space.hpp"
+#include "iga/space.hpp"
+#include "materials/material_law.hpp"
+#include "solver/element_colouring.hpp"
+#include "solver/linear_solver.hpp"
+#include "solver/matrix_storage.hpp"
+#include "solver/nonlinear_problem.hpp"
+#include "solver/sparsity_pattern.hpp"
+
+namespace isomuscle::iga {
+
+enum class Formulation { automatic, displacement, mixed };
+const char* to_string(Formulation f);
+// "automatic" | "displacement" | "mixed"; throws std::invalid_argument listing the choices.
+Formulation parse_formulation(std::string_view name);
+
+struct ProblemOptions {
+  // automatic: mixed when the law has a volumetric split AND is nearly incompressible,
+  // bulk_modulus() >= mixed_threshold * shear_modulus(); else displacement. mixed with a law
+  // without split throws. Why the threshold: with p~, J~ constant per element the isochoric
+  // energy does not see a dilatation of zero element mean at all, so for a compressible solid
+  // the mixed element is too soft on coarse meshes (a 2 x 1 x 1 cantilever, p = 2, kappa/mu = 5:
+  // smallest tangent eigenvalue 0.66 instead of 12.6, first Newton step 20 times too long),
+  // while the displacement formulation only locks when kappa/mu is large.
+  Formulation formulation = Formulation::automatic;
+  double mixed_threshold = 100.0;  // kappa/mu; nu = 0.495
+  // Degree k of the element-wise p~, J~ spaces (0 = mean dilatation; see pressure_space.hpp).
+  int pressure_degree = 0;
+  // Assembly threads; 0 = OpenMP default.
+  int threads = 0;
+  // Storage of the tangent (the linear solver's settings must agree).
+  solver::MatrixStorage storage = solver::MatrixStorage::Upper;
+  solver::ScatterMode scatter = solver::ScatterMode::Stored;
+  // Throws std::invalid_argument naming the option.
+  void validate() const;
+};
+
+// Material state at one point of the committed state, for outputs.
+struct PointState {
+  FieldPoint field;                                  // position, displacement, F
+  double J = 1.0;                                    // det F
+  double J_bar = 1.0;                                // J~ (mixed formulation), else J
+  double p_bar = 0.0;                                // p~ (mixed formulation), else 0, Pa
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();       // second Piola–Kirchhoff, Pa
+  Eigen::Matrix3d cauchy = Eigen::Matrix3d::Zero();  // sigma = F S F^T / J (thesis 5.41), Pa
+  Eigen::Vector3d fibre = Eigen::Vector3d::UnitZ();  // reference N
+  Eigen::Vector3d fibre_deformed = Eigen::Vector3d::UnitZ();  // a = F N / |F N| (thesis 5.30)
+  double fibre_stretch = 1.0;                                 // |F N|
+};
+
+class Problem : public solver::NonlinearProblem {
+ public:
+  // space, dofs and law must outlive the problem. fibres: one unit vector per quadrature point
+  // (fibre_directions(space, spec)). Throws std::invalid_argument for inconsistent sizes, bad
+  // options or conditions.
+  Problem(const Space& space, const DofMap& dofs, const materials::MaterialLaw& law,
+          std::vector<Eigen::Vector3d> fibres, const DirichletConditions& conditions,
+          Loads loads = {}, ProblemOptions options = {});
+  ~Problem() override;
+
+  // --- solver::NonlinearProblem ---
+  int size() const override { return constraints_.num_free(); }
+  void begin_step(double time, double dt) override;
+  solver::EvaluationStatus evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& residual,
+                                    solver::SparseMatrix* tangent) override;
+  void commit_step(const Eigen::VectorXd& u) override;
+
+  // Predictor for the step set up by begin_step (the consistent-tangent / linearised Dirichlet
+  // predictor of step-44 and FE codes): from the committed state u_n with the tangent there,
+  //   K_ff du_f = -(f_int(u_n) + K_fp du_p - f_ext(t_n+1))_f,  du_p = prescribed increment,
+  // and u <- u + du_f. Without it the first Newton iterate of a step sees the prescribed jump of
+  // the boundary control points alone, with the interior at rest: for kappa/mu ~ 1e5 the
+  // distorted boundary layer carries pressures ~ kappa du_p / h, its tangent is indefinite and
+  // the full Newton step inverts elements (measured on the barrel). u must hold the committed
+  // free values (size()); on failure u is unchanged and the status says why.
+  solver::EvaluationStatus predict(Eigen::VectorXd& u) override;
+
+  // --- set-up ---
+  Formulation formulation() const { return formulation_; }  // resolved (never automatic)
+  const ProblemOptions& options() const { return options_; }
+  void set_threads(int threads);
+  const Space& space() const { return space_; }
+  const DofMap& dofs() const { return dofs_; }
+  const materials::MaterialLaw& law() const { return law_; }
+  const ConstrainedDofs& constraints() const { return constraints_; }
+  const solver::SparsityPattern& pattern() const { return pattern_; }
+  int num_colours() const { return colouring_.n_colours(); }
+  double time() const { return time_; }
+  double dt() const { return dt_; }
+
+  // --- state ---
+  // Full displacement (all DOFs, 3 node + c) of free values u at the current time.
+  Eigen::VectorXd full_displacement(const Eigen::VectorXd& u) const;
+  // Committed state (zero before the first commit).
+  const Eigen::VectorXd& committed_free() const { return committed_free_; }
+  const Eigen::VectorXd& committed_displacement() const { return committed_full_; }
+  double committed_time() const { return committed_time_; }
+  std::span<const double> committed_history(int element, int point) const;
+  const std::vector<Eigen::Vector3d>& fibres() const { return fibres_; }
+  // External force at the current time (all DOFs), N.
+  const Eigen::VectorXd& external_force() const { return f_ext_; }
+
+  // --- outputs ---
+  // Internal force at ALL DOFs for free values u (an assembly pass without tangent). The trial
+  // history is scratch and may change; the committed state does not.
+  solver::EvaluationStatus internal_force(const Eigen::VectorXd& u, Eigen::VectorXd& f_int);
+  // Sum over nodes of the force components of a full force vector: the reaction on a supported
+  // face is the internal force at its DOFs (N).
+  Eigen::Vector3d sum_over_nodes(const Eigen::VectorXd& f_full, std::span<const int> nodes) const;
+  // Current volume int J dV of a full displacement vector (m^3).
+  double current_volume(const Eigen::VectorXd& u_full) const;
+  // Displacement at a parametric point (m).
+  Eigen::Vector3d displacement_at(const Eigen::VectorXd& u_full, const Eigen::Vector3d& xi) const;
+  // Stress, J, fibre at a parametric point of the COMMITTED state: the law is evaluated at F(xi)
+  // with the history and fibre of the nearest quadrature point of its element, as it was at the
+  // start of the committed step (so at a quadrature point this reproduces the converged stress
+  // exactly, also for rate-dependent laws); for the mixed formulation with p~(xi), J~(xi) of the
+  // element. Throws std::invalid_argument on the collapsed axis (det dX/dxi = 0, F undefined)
+  // and std::runtime_error when the law fails there.
+  PointState state_at(const Eigen::Vector3d& xi) const;
+  // The same at quadrature point q of element e.
+  PointState state_at_point(int e, int q) const;
+  // The states at all quadrature points of element e, from one kernel pass over the element
+  // (exactly the converged values).
+  std::vector<PointState> element_states(int e) const;
+  Tessellation tessellate(const Eigen::VectorXd& u_full, int subdivisions) const;
+
+ private:
+  // use_base: mixed formulation, update p~, J~ from the base of the last tangent evaluation
+  // (when there is one) instead of projecting exactly (element_kernels.hpp). With increment
+  // (full vector), also K_increment = K_all increment (all DOFs, element by element).
+  solver::EvaluationStatus assemble(const Eigen::VectorXd& u_full, bool want_tangent,
+                                    double* tangent_values, bool use_base,
+                                    const Eigen::VectorXd* increment = nullptr,
+                                    Eigen::VectorXd* K_increment = nullptr);
+  std::string describe_failure(int e, const KernelStatus& s) const;
+  PointState evaluate_state(int e, const Eigen::Vector3d& xi, int history_point) const;
+  // Runs the element kernel (no tangent) at the committed state with the pre-step history into a
+  // workspace of its own; throws std::runtime_error when the kernel fails.
+  void committed_element_pass(int e, ElementWorkspace& ws) const;
+
+  const Space& space_;
+  const DofMap& dofs_;
+  const materials::MaterialLaw& law_;
+  std::vector<Eigen::Vector3d> fibres_;
+  Loads loads_;
+  ProblemOptions options_;
+  Formulation formulation_ = Formulation::displacement;
+  ConstrainedDofs constraints_;
+  PressureSpace pressure_;
+  std::vector<std::vector<int>> element_all_dofs_;
+  solver::SparsityPattern pattern_;
+  solver::ElementColouring colouring_;
+  std::vector<ElementWorkspace> workspaces_;
+  int history_size_ = 0;
+  std::vector<double> history_committed_;
+  std::vector<double> history_trial_;
+  std::vector<double> history_previous_;  // committed history before the last commit
+  double time_ = 0.0;
+  double dt_ = 0.0;
+  double committed_time_ = 0.0;
+  double committed_dt_ = 0.0;
+  Eigen::VectorXd f_ext_;
+  Eigen::VectorXd f_int_;
+  Eigen::VectorXd u_full_;
+  Eigen::VectorXd committed_full_;
+  Eigen::VectorXd committed_free_;
+  Eigen::VectorXd last_u_;  // free values of the last successful evaluation (trial history)
+  // Mixed formulation: per element base state of the last tangent evaluation (blocks of n = 3 n_en
+  // or m doubles, G m x n, K_JJ m x m); written to next_ during a tangent assembly and swapped in
+  // when the whole assembly succeeded.
+  struct MixedBaseStorage {
+    std::vector<double> ue, theta, pi, R_pi, R_theta, G, K_JJ;
+    void resize(int nel, int m, int n);
+  };
+  MixedBaseStorage base_, next_base_;
+  bool base_valid_ = false;
+  std::unique_ptr<solver::LinearSolver> predictor_solver_;
+  solver::SparseMatrix predictor_matrix_;
+  double last_time_ = 0.0;
+  bool trial_valid_ = false;
+};
+
+}  // namespace isomuscle::iga

@@ -1,0 +1,402 @@
+#include "io/iga_run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <system_error>
+
+#include "io/csv_writer.hpp"
+#include "io/iga_run_fields.hpp"
+#include "io/iga_run_probes.hpp"
+#include "io/iga_run_setup.hpp"
+#include "isomuscle/version.hpp"
+#include "solver/time_stepper.hpp"
+
+namespace isomuscle::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Json = nlohmann::ordered_json;
+
+constexpr double kFloor = 10.0;  // round-off floors of the Newton tolerances, see newton_settings
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// "0.0181" (three significant digits), for messages.
+std::string format_seconds(double seconds) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", seconds);
+  return text;
+}
+
+// Accumulates the wall time of a scope into a total (s).
+class ScopedSeconds {
+ public:
+  explicit ScopedSeconds(double& total) : total_(total), start_(Clock::now()) {}
+  ~ScopedSeconds() { total_ += seconds_since(start_); }
+  ScopedSeconds(const ScopedSeconds&) = delete;
+  ScopedSeconds& operator=(const ScopedSeconds&) = delete;
+
+ private:
+  double& total_;
+  Clock::time_point start_;
+};
+
+// The iga::Problem as Newton and the time stepper see it, with two additions:
+// * a linear-extrapolation predictor (as Abaqus's default): the unknowns are y = u - s, where the
+//   shift s is advanced at every step start by v dt, v = (u_n - u_{n-1}) / dt_n the velocity of the
+//   last converged step. The stepper starts each step from the last converged y, so Newton starts
+//   from u_n + v dt instead of u_n: for a smooth motion (a contraction under way, a constant pull)
+//   the initial residual is then that of the change in velocity, not of the whole increment. A
+//   step that is cut back is restarted with s recomputed for the shorter dt. Residual and tangent
+//   are those of u (dr/dy = dr/du). Where there is no velocity yet (the first step, or after a
+//   held state) the linearised Dirichlet predictor of iga::Problem::predict is used instead: it
+//   moves the interior with the prescribed increment, so the first iterate does not squeeze the
+//   whole increment into the elements next to the moved face.
+// * a hook that runs on the converged state just before it is committed (exact reactions and the
+//   pre-step histories for the probes).
+class SteppedProblem final : public solver::NonlinearProblem {
+ public:
+  SteppedProblem(iga::Problem& problem, std::function<void(const Eigen::VectorXd&)> before_commit)
+      : problem_(problem),
+        before_commit_(std::move(before_commit)),
+        shift_committed_(Eigen::VectorXd::Zero(problem.size())),
+        shift_(shift_committed_),
+        velocity_(shift_committed_),
+        u_committed_(shift_committed_),
+        u_(shift_committed_) {}
+  int size() const override { return problem_.size(); }
+  void begin_step(double time, double dt) override {
+    shift_ = shift_committed_;
+    shift_.noalias() += dt * velocity_;
+    dt_ = dt;
+    problem_.begin_step(time, dt);
+  }
+  solver::EvaluationStatus evaluate(const Eigen::VectorXd& y, Eigen::VectorXd& residual,
+                                    solver::SparseMatrix* tangent) override {
+    u_ = y + shift_;
+    return problem_.evaluate(u_, residual, tangent);
+  }
+  solver::EvaluationStatus predict(Eigen::VectorXd& y) override {
+    if (velocity_.squaredNorm() > 0.0) {
+      return solver::EvaluationStatus::success();  // the extrapolation shift predicts
+    }
+    Eigen::VectorXd u = y + shift_;
+    const solver::EvaluationStatus status = problem_.predict(u);
+    if (status.ok) {
+      y = u - shift_;
+    }
+    return status;
+  }
+  void commit_step(const Eigen::VectorXd& y) override {
+    u_ = y + shift_;
+    if (before_commit_)
+      before_commit_(u_);
+    problem_.commit_step(u_);
+    velocity_ = (u_ - u_committed_) / dt_;
+    u_committed_ = u_;
+    shift_committed_ = shift_;
+  }
+
+ private:
+  iga::Problem& problem_;
+  std::function<void(const Eigen::VectorXd&)> before_commit_;
+  Eigen::VectorXd shift_committed_, shift_, velocity_, u_committed_, u_;
+  double dt_ = 0.0;
+};
+
+// Output times of [output]: the listed times and every multiple of `every` up to end, ascending
+// and distinct; empty means "every converged step".
+std::vector<double> output_times(const OutputSettings& o, double end) {
+  std::vector<double> t = o.times;
+  if (o.every > 0.0) {
+    const long n = static_cast<long>(std::floor(end / o.every * (1.0 + 1e-12)));
+    for (long k = 1; k <= n; ++k)
+      t.push_back(std::min(end, static_cast<double>(k) * o.every));
+  }
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end(),
+                      [end](double a, double b) { return std::abs(a - b) <= 1e-12 * end; }),
+          t.end());
+  return t;
+}
+
+// Newton settings of [solver], with absolute floors at round-off level: a relative tolerance of
+// |r_0| cannot be met when |r_0| itself is tiny (a step in which little changes, such as the first
+// instants of activation or a held state), because the residual of a nearly incompressible body
+// carries round-off of about eps kappa |J - 1| per unit area. The floors are
+//   residual  atol = kFloor eps max(kappa, mu) V^(2/3)    (N; V the reference volume)
+//   energy    eatol = atol kFloor eps^(1/2) V^(1/3)       (J: atol times a displacement correction
+//                                                          of ~1e-7 of the body size)
+// far below any force or work of interest (for the barrel: atol ~ 2e-9 N against forces of ~10 N).
+solver::NewtonSettings newton_settings(const SolverSettings& s, const IgaModel& model) {
+  solver::NewtonSettings n;
+  n.max_iterations = s.newton_max_iterations;
+  n.relative_residual_tolerance = s.tolerance_residual;
+  n.relative_energy_tolerance = s.tolerance_energy;
+  n.line_search = s.line_search;
+  n.linear.method = s.linear_solver == LinearSolverKind::cholmod ? solver::LinearMethod::Cholesky
+                                                                 : solver::LinearMethod::Lu;
+  n.linear.lu_fallback = true;
+  const double volume = model.space->reference_volume();
+  const double modulus = std::max(model.law->bulk_modulus(), model.law->shear_modulus());
+  const double eps = std::numeric_limits<double>::epsilon();
+  n.absolute_residual_tolerance = kFloor * eps * modulus * std::cbrt(volume * volume);
+  n.absolute_energy_tolerance =
+      n.absolute_residual_tolerance * kFloor * std::sqrt(eps) * std::cbrt(volume);
+  return n;
+}
+
+solver::TimeStepperSettings stepper_settings(const TimeSettings& t,
+                                             const std::vector<double>& outputs) {
+  solver::TimeStepperSettings s;
+  s.start_time = 0.0;
+  s.end_time = t.end;
+  s.initial_dt = t.dt;
+  s.min_dt = t.dt_min;
+  s.max_dt = t.adaptive ? t.dt_max : t.dt;
+  s.growth_factor = t.adaptive ? s.growth_factor : 1.0;
+  for (double x : outputs) {
+    if (x > 0.0)
+      s.output_times.push_back(x);
+  }
+  return s;
+}
+
+// Largest |u| over the tessellation points of the committed state (m).
+double max_displacement(const iga::Problem& problem, int samples) {
+  const iga::Tessellation t = problem.tessellate(problem.committed_displacement(), samples);
+  double m = 0.0;
+  for (const Eigen::Vector3d& u : t.displacement)
+    m = std::max(m, u.norm());
+  return m;
+}
+
+void copy_scene(const Scene& scene, const fs::path& out_dir) {
+  std::error_code ec;
+  if (!scene.file.empty() && fs::is_regular_file(scene.file, ec) &&
+      !fs::equivalent(scene.file, out_dir / "scene.toml", ec)) {
+    fs::copy_file(scene.file, out_dir / "scene.toml", fs::copy_options::overwrite_existing, ec);
+  }
+}
+
+}  // namespace
+
+// Set-up, stepping and outputs of one scene (see iga_run.hpp); reads top to bottom.
+RunResult run_iga(const Scene& scene, const RunOptions& options) {
+  const Clock::time_point start = Clock::now();
+  const auto log = [&](const std::string& line) {
+    if (options.log)
+      options.log(line);
+  };
+  RunResult result;
+  result.out_dir = options.out_dir;
+  result.summary_path = options.out_dir / "summary.json";
+  std::error_code ec;
+  fs::create_directories(options.out_dir, ec);
+  if (ec || !fs::is_directory(options.out_dir)) {
+    throw std::runtime_error("cannot create the output folder " + options.out_dir.string() + ": " +
+                             (ec ? ec.message() : "not a directory"));
+  }
+  copy_scene(scene, options.out_dir);
+
+  RunSummary& s = result.summary;
+  s.scene = scene.file.string();
+  s.discretisation = "iga";
+  s.linear_solver = to_string(scene.solver.linear_solver);
+  s.extra["version"] = kVersion;
+  s.extra["description"] = scene.description;
+  s.extra["material"] = scene.material.model;
+  const int threads = options.threads >= 0 ? options.threads : scene.solver.threads;
+  s.extra["threads"] = threads;
+  WallSeconds& wall = s.wall_seconds;
+  const auto finish = [&](const std::string& failure) {
+    s.converged = failure.empty();
+    s.failure_reason = failure;
+    result.converged = s.converged;
+    result.failure_reason = failure;
+    wall.total = seconds_since(start);
+    write_summary(s, result.summary_path);
+    return result;
+  };
+
+  // ---- Set-up: geometry, space, law, conditions, problem, output files. ----
+  IgaModel model;
+  std::unique_ptr<IgaProbes> probes;
+  std::unique_ptr<IgaFieldOutput> fields;
+  std::unique_ptr<CsvWriter> probe_csv, newton_csv;
+  const std::vector<double> out_times = output_times(scene.output, scene.time.end);
+  try {
+    ScopedSeconds timer(wall.setup);
+    model = build_iga_model(scene, threads);
+    probes = std::make_unique<IgaProbes>(scene.probes, model);
+    if (!scene.output.fields.empty()) {
+      fields =
+          std::make_unique<IgaFieldOutput>(options.out_dir / "fields.xdmf", scene.output.fields,
+                                           scene.output.samples_per_element, model.fibre_spec);
+    }
+    std::vector<std::string> columns{"time", "step", "dt", "newton_iterations"};
+    columns.insert(columns.end(), probes->columns().begin(), probes->columns().end());
+    probe_csv = std::make_unique<CsvWriter>(options.out_dir / "probes.csv", columns);
+    newton_csv = std::make_unique<CsvWriter>(
+        options.out_dir / "newton.csv",
+        std::vector<std::string>{"step", "time", "dt", "iteration", "initial_residual_norm",
+                                 "residual_norm", "relative_residual", "energy", "relative_energy",
+                                 "step_length", "line_search_halvings", "rcond", "lu_fallback"});
+  } catch (const std::exception& e) {
+    result.setup_failed = true;
+    return finish(std::string("set-up failed: ") + e.what());
+  }
+  iga::Problem& problem = *model.problem;
+  const iga::Space& space = *model.space;
+  for (int d = 0; d < 3; ++d)
+    s.degrees.push_back(space.volume().degree(d));
+  s.elements = static_cast<std::size_t>(space.num_elements());
+  s.dofs = static_cast<std::size_t>(model.dofs->num_dofs());
+  s.volume_initial_m3 = space.reference_volume();
+  s.extra["free_dofs"] = problem.size();
+  s.extra["control_points"] = model.dofs->num_control_points();
+  s.extra["nodes"] = model.dofs->num_nodes();
+  s.extra["quadrature_points"] = space.num_points();
+  s.extra["formulation"] = iga::to_string(problem.formulation());
+  s.extra["fibres"] = to_string(scene.fibres.mode);
+  const char* solid_names = "uvw";
+  s.extra["parametric_frame"] =
+      Json{{"scene_u_is_solid", std::string(1, solid_names[model.frame.solid_direction[0]])},
+           {"scene_v_is_solid", std::string(1, solid_names[model.frame.solid_direction[1]])},
+           {"around_centreline_reversed", model.frame.reversed[0]}};
+  for (const auto& note : probes->notes())
+    model.notes.push_back(note);
+  s.extra["notes"] = model.notes;
+  log("set-up: " + std::to_string(space.num_elements()) + " elements of degree (" +
+      std::to_string(s.degrees[0]) + ", " + std::to_string(s.degrees[1]) + ", " +
+      std::to_string(s.degrees[2]) + "), " + std::to_string(model.dofs->num_nodes()) + " nodes, " +
+      std::to_string(problem.size()) + " unknowns, " + iga::to_string(problem.formulation()) +
+      " formulation, law " + model.law->name() + ", " + format_seconds(wall.setup) + " s");
+  for (const auto& note : model.notes)
+    log("note: " + note);
+
+  // ---- Stepping with outputs after every converged step. ----
+  const bool every_step = out_times.empty();
+  int steps = 0;
+  double min_rcond = 1.0;
+  bool factorised = false;
+  std::vector<double> probe_row;
+  std::optional<std::vector<double>> last_probes;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
+  std::string failure;
+  std::optional<solver::TimeStepper> stepper;
+  solver::TimeStepperResult stepped;
+  try {
+    stepper.emplace(stepper_settings(scene.time, out_times), newton_settings(scene.solver, model));
+    if (fields && !out_times.empty() && out_times.front() <= 0.0) {
+      ScopedSeconds timer(wall.output);
+      fields->write(problem);  // the reference state at t = 0
+    }
+    SteppedProblem stepped_problem(problem, [&](const Eigen::VectorXd& converged) {
+      ScopedSeconds timer(wall.output);
+      probes->before_commit(problem, converged);
+    });
+    const auto on_step = [&](const solver::StepInfo& info, const Eigen::VectorXd&) {
+      ScopedSeconds timer(wall.output);
+      ++steps;
+      const solver::StepRecord& r = info.record;
+      const solver::NewtonResult& n = info.newton;
+      if (n.factorizations > 0) {
+        factorised = true;
+        min_rcond = std::min(min_rcond, n.min_rcond);
+      }
+      for (const solver::NewtonIteration& it : n.history) {
+        newton_csv->write_row(
+            {static_cast<double>(r.step), r.time, r.dt, static_cast<double>(it.iteration),
+             n.initial_residual_norm, it.residual_norm, it.relative_residual, it.energy,
+             it.relative_energy, it.step_length, static_cast<double>(it.line_search_halvings),
+             it.rcond, it.lu_fallback ? 1.0 : 0.0});
+      }
+      probes->values(problem, probe_row);
+      std::vector<double> row{r.time, static_cast<double>(r.step), r.dt,
+                              static_cast<double>(r.newton_iterations)};
+      row.insert(row.end(), probe_row.begin(), probe_row.end());
+      probe_csv->write_row(row);
+      last_probes = probe_row;
+      if (fields && (every_step || r.output_time))
+        fields->write(problem);
+      if (options.progress) {
+        const solver::NewtonStatistics& ns = stepper->newton().statistics();
+        options.progress(RunProgress{steps, r.time, scene.time.end, r.dt, r.newton_iterations,
+                                     n.initial_residual_norm, n.final_residual_norm,
+                                     ns.solves - ns.converged_solves});
+      }
+    };
+    stepped = stepper->run(stepped_problem, u, on_step);
+    if (!stepped.completed)
+      failure = stepped.message;
+  } catch (const std::exception& e) {
+    failure = "at t = " + std::to_string(problem.committed_time()) + " s (after " +
+              std::to_string(steps) + " converged steps): " + e.what();
+  }
+
+  // ---- Summary: statistics, timings, key results of the last converged state. ----
+  result.time_reached = problem.committed_time();
+  s.steps = static_cast<std::size_t>(steps);
+  for (const solver::StepCut& c : stepped.cuts) {
+    s.step_cuts.push_back(StepCut{c.time, c.dt, c.next_dt, c.reason});
+  }
+  if (stepper) {
+    const solver::NewtonStatistics& ns = stepper->newton().statistics();
+    const solver::LinearSolverStatistics& ls = stepper->newton().linear_solver().statistics();
+    s.newton_iterations = static_cast<std::size_t>(ns.iterations);
+    wall.assembly = ns.residual_seconds + ns.tangent_seconds;
+    wall.setup += ls.time.symbolic;
+    wall.factorisation = ls.time.numeric;
+    wall.solve = ls.time.solve;
+    s.extra["linear_solver_statistics"] =
+        Json{{"method", solver::to_string(stepper->newton().settings().linear.method)},
+             {"cholesky_factorizations", ls.cholesky_factorizations},
+             {"cholesky_failures", ls.cholesky_failures},
+             {"lu_factorizations", ls.lu_factorizations},
+             {"lu_fallbacks", ls.lu_fallbacks},
+             {"failures", ls.failures},
+             {"symbolic_analyses", ls.symbolic_analyses},
+             {"min_rcond", factorised ? Json(min_rcond) : Json(nullptr)}};
+    const solver::NewtonSettings& nset = stepper->newton().settings();
+    s.extra["newton_tolerances"] = Json{{"relative_residual", nset.relative_residual_tolerance},
+                                        {"absolute_residual", nset.absolute_residual_tolerance},
+                                        {"relative_energy", nset.relative_energy_tolerance},
+                                        {"absolute_energy", nset.absolute_energy_tolerance}};
+    s.extra["newton"] = Json{{"solves", ns.solves},
+                             {"converged_solves", ns.converged_solves},
+                             {"residual_evaluations", ns.residual_evaluations},
+                             {"tangent_evaluations", ns.tangent_evaluations}};
+  }
+  s.extra["time"] = Json{{"end", scene.time.end}, {"reached", result.time_reached}};
+  s.extra["outputs"] = Json{{"fields", fields ? Json("fields.xdmf") : Json(nullptr)},
+                            {"field_steps", fields ? fields->writer().steps() : 0},
+                            {"probes", "probes.csv"},
+                            {"newton_log", "newton.csv"}};
+  try {
+    ScopedSeconds timer(wall.output);
+    s.volume_final_m3 = problem.current_volume(problem.committed_displacement());
+    s.max_displacement_m = max_displacement(problem, scene.output.samples_per_element);
+  } catch (const std::exception& e) {
+    if (failure.empty())
+      failure = std::string("final results: ") + e.what();
+  }
+  for (std::size_t i = 0; i < probes->columns().size(); ++i) {
+    s.probes[probes->columns()[i]] =
+        last_probes ? std::optional<double>((*last_probes)[i]) : std::nullopt;
+  }
+  return finish(failure);
+}
+
+}  // namespace isomuscle::io

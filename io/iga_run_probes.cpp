@@ -1,0 +1,209 @@
+#include "io/iga_run_probes.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "geometry/point_inversion.hpp"
+#include "iga/pressure_space.hpp"
+#include "io/setting_check.hpp"
+
+namespace isomuscle::io {
+
+namespace {
+
+// A point closer to the collapsed axis than this fraction of the element's largest det J (which
+// falls linearly to 0 there) is evaluated at the nearest quadrature point instead: F = I + du/dX
+// needs J^-1 of the parametrisation.
+constexpr double kSingularFraction = 1e-3;
+
+int component_index(const std::string& name) {
+  if (name == "x")
+    return 0;
+  if (name == "y")
+    return 1;
+  if (name == "z")
+    return 2;
+  return 3;
+}
+
+double pick(const Eigen::Vector3d& v, int component) {
+  return component < 3 ? v[component] : v.norm();
+}
+
+// The quadrature point of element e nearest to xi, in the element's reference coordinates.
+int nearest_point(const iga::Space& space, int e, const Eigen::Vector3d& xi) {
+  const iga::Element& el = space.element(e);
+  const Eigen::Vector3d t = iga::element_reference_coordinates(el, xi);
+  int best = 0;
+  double best_d = std::numeric_limits<double>::infinity();
+  for (int q = 0; q < space.points_per_element(); ++q) {
+    const double d =
+        (iga::element_reference_coordinates(el, space.parametric(e, q)) - t).squaredNorm();
+    if (d < best_d) {
+      best_d = d;
+      best = q;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+IgaProbes::IgaProbes(const std::vector<ProbeSettings>& probes, const IgaModel& model) {
+  const iga::Space& space = *model.space;
+  const iga::Problem& problem = *model.problem;
+  const materials::MaterialLaw& law = *model.law;
+  std::unique_ptr<geometry::PointInverter> inverter;
+  part_names_ = law.cauchy_part_names();
+  const bool mixed = problem.formulation() == iga::Formulation::mixed;
+  const bool has_vol =
+      std::find(part_names_.begin(), part_names_.end(), "vol") != part_names_.end();
+  parts_from_law_ = !(part_names_.size() == 1 && part_names_[0] == "total") && (!mixed || has_vol);
+  replace_volumetric_ = mixed && has_vol;
+
+  for (const ProbeSettings& s : probes) {
+    Probe p;
+    p.settings = s;
+    p.component = component_index(s.component);
+    p.first_column = columns_.size();
+    const std::string what = "[[probe]] '" + s.name + "'";
+    if (s.kind == ProbeKind::point_displacement || s.kind == ProbeKind::stress_parts) {
+      if (s.xi) {
+        for (int d = 0; d < 3; ++d) {
+          if (!((*s.xi)[d] >= 0.0 && (*s.xi)[d] <= 1.0)) {
+            throw std::invalid_argument(what + ": xi = " + describe_point(*s.xi) +
+                                        " must lie in [0, 1] in every direction");
+          }
+        }
+        p.xi = model.frame.solid_xi(*s.xi);
+      } else {
+        if (!inverter)
+          inverter = std::make_unique<geometry::PointInverter>(space.volume());
+        const geometry::InversionResult r = inverter->invert(*s.point);
+        if (!r.inside) {
+          throw std::invalid_argument(what + ": point " + describe_point(*s.point) +
+                                      " m lies outside the solid (nearest point of the solid is " +
+                                      format_number(r.distance) + " m away)");
+        }
+        p.xi = r.xi;
+      }
+      p.element = space.locate(p.xi);
+    }
+    switch (s.kind) {
+      case ProbeKind::point_displacement:
+      case ProbeKind::volume:
+        columns_.push_back(s.name);
+        break;
+      case ProbeKind::face_reaction:
+        p.nodes = selected_nodes(model, *s.face, what);
+        needs_force_ = true;
+        columns_.push_back(s.name);
+        break;
+      case ProbeKind::stress_parts: {
+        double largest = 0.0;
+        for (int q = 0; q < space.points_per_element(); ++q)
+          largest = std::max(largest, space.jacobian(p.element, q).determinant());
+        const double here = space.volume().jacobian(p.xi).determinant();
+        if (!(here > kSingularFraction * largest)) {
+          p.point = nearest_point(space, p.element, p.xi);
+          notes_.push_back(what +
+                           ": the point lies on the collapsed axis of the solid, where F is "
+                           "undefined; stresses are taken at the nearest quadrature point, "
+                           "X = " +
+                           describe_point(space.position(p.element, p.point)) + " m");
+        }
+        if (parts_from_law_) {
+          for (const std::string& part : part_names_) {
+            if (part != "total")
+              columns_.push_back(s.name + "." + part);
+          }
+        }
+        columns_.push_back(s.name + ".total");
+        break;
+      }
+    }
+    probes_.push_back(std::move(p));
+  }
+}
+
+void IgaProbes::before_commit(iga::Problem& problem, const Eigen::VectorXd& u) {
+  if (needs_force_) {
+    const solver::EvaluationStatus status = problem.internal_force(u, force_);
+    if (!status.ok)
+      throw std::runtime_error("face reaction probes: " + status.message);
+  }
+  const iga::Space& space = problem.space();
+  for (Probe& p : probes_) {
+    if (p.settings.kind != ProbeKind::stress_parts || problem.law().history_size() == 0)
+      continue;
+    const int q = p.point >= 0 ? p.point : nearest_point(space, p.element, p.xi);
+    const auto h = problem.committed_history(p.element, q);
+    p.history.assign(h.begin(), h.end());
+  }
+}
+
+// a . sigma_part . a of every part and the total (thesis 3.44, 5.30, 5.41); returns the total.
+double IgaProbes::stress_column_values(const iga::Problem& problem, const Probe& p,
+                                       std::vector<double>& out, std::size_t at) const {
+  const iga::PointState st =
+      p.point >= 0 ? problem.state_at_point(p.element, p.point) : problem.state_at(p.xi);
+  const Eigen::Vector3d& a = st.fibre_deformed;
+  if (parts_from_law_) {
+    const materials::MaterialLaw& law = problem.law();
+    const std::size_t hs = static_cast<std::size_t>(law.history_size());
+    std::vector<double> trial(hs);
+    materials::PointInput in;
+    in.F = st.field.F;
+    in.fibre = st.fibre;
+    in.time = problem.committed_time();
+    in.dt = problem.dt();
+    in.history = std::span<const double>(p.history.data(), hs);
+    materials::PointResult res;
+    res.history = std::span<double>(trial.data(), hs);
+    const materials::PointStatus status = law.evaluate(in, res, false);
+    if (status != materials::PointStatus::ok) {
+      throw std::runtime_error("[[probe]] '" + p.settings.name + "': material law '" + law.name() +
+                               "' failed at the probe point (" + materials::to_string(status) +
+                               ")");
+    }
+    std::vector<Eigen::Matrix3d> parts(part_names_.size(), Eigen::Matrix3d::Zero());
+    law.cauchy_parts(in, trial, parts);
+    for (std::size_t i = 0; i < part_names_.size(); ++i) {
+      if (part_names_[i] == "total")
+        continue;
+      if (replace_volumetric_ && part_names_[i] == "vol")
+        parts[i] = st.p_bar * Eigen::Matrix3d::Identity();
+      out[at++] = a.dot(parts[i] * a);
+    }
+  }
+  const double total = a.dot(st.cauchy * a);
+  out[at] = total;
+  return total;
+}
+
+void IgaProbes::values(const iga::Problem& problem, std::vector<double>& out) const {
+  out.assign(columns_.size(), 0.0);
+  const Eigen::VectorXd& u_full = problem.committed_displacement();
+  for (const Probe& p : probes_) {
+    switch (p.settings.kind) {
+      case ProbeKind::point_displacement:
+        out[p.first_column] = pick(problem.displacement_at(u_full, p.xi), p.component);
+        break;
+      case ProbeKind::face_reaction:
+        out[p.first_column] = pick(problem.sum_over_nodes(force_, p.nodes), p.component);
+        break;
+      case ProbeKind::volume:
+        out[p.first_column] = problem.current_volume(u_full);
+        break;
+      case ProbeKind::stress_parts:
+        stress_column_values(problem, p, out, p.first_column);
+        break;
+    }
+  }
+}
+
+}  // namespace isomuscle::io

@@ -1,0 +1,74 @@
+#pragma once
+// The [[probe]] entries of a scene on an IGA run: scalar time series, one value per column per
+// converged step (probes.csv). Columns and units:
+//
+//   point_displacement  <name>              u(X) at the point, component x|y|z or |u|, m
+//   face_reaction       <name>              sum of the internal forces at the face's nodes, N:
+//                                           the force the support exerts on the body (at
+//                                           equilibrium f_int = f_ext + reactions; no loads here)
+//   volume              <name>              int J dV, m^3
+//   stress_parts        <name>.<part> ...   a . sigma_part . a, the normal Cauchy stress along the
+//                                           deformed fibre a = F N / |F N| (thesis 5.30, 5.41) of
+//                                           each part of the law (thesis 3.44: see, pe, matrix,
+//                                           vol for the Hill laws), Pa, and <name>.total
+//
+// Points are given physically (point inversion, geometry/point_inversion.hpp) or parametrically
+// (xi in [0, 1]^3, scene naming: iga_run_setup.hpp). Stress is evaluated at the point with the
+// history of the nearest quadrature point (iga::Problem::state_at); on the collapsed axis of a
+// shrink solid, where F is undefined, at the nearest quadrature point instead (a note says where).
+// For the mixed formulation the volumetric part is p~ I (the element's pressure), so the parts
+// always sum to the total stress of the solution.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "iga/problem.hpp"
+#include "io/iga_run_setup.hpp"
+#include "io/scene.hpp"
+
+namespace isomuscle::io {
+
+class IgaProbes {
+ public:
+  // Resolves points and faces on the model. Throws std::invalid_argument naming the probe when a
+  // point lies outside the solid or a face selects nothing.
+  IgaProbes(const std::vector<ProbeSettings>& probes, const IgaModel& model);
+
+  // Column names, in the order of the scene's probes.
+  const std::vector<std::string>& columns() const { return columns_; }
+  // Where points were moved (axis) and other decisions, for the log.
+  const std::vector<std::string>& notes() const { return notes_; }
+
+  // Called with the converged free values BEFORE the problem commits them: the internal force
+  // (reactions) of exactly the converged state and the pre-step history of stress points.
+  void before_commit(iga::Problem& problem, const Eigen::VectorXd& u);
+  // The value of every column at the committed state (after commit_step). Throws
+  // std::runtime_error when the law cannot be evaluated at a stress point.
+  void values(const iga::Problem& problem, std::vector<double>& out) const;
+
+ private:
+  struct Probe {
+    ProbeSettings settings;
+    int component = 3;  // 0..2 = x..z, 3 = magnitude
+    Eigen::Vector3d xi = Eigen::Vector3d::Zero();
+    int element = -1;
+    int point = -1;  // >= 0: evaluate at this quadrature point of element (axis fallback)
+    std::vector<int> nodes;
+    std::vector<double> history;  // pre-step history of the stress point
+    std::size_t first_column = 0;
+  };
+
+  double stress_column_values(const iga::Problem& problem, const Probe& probe,
+                              std::vector<double>& out, std::size_t at) const;
+
+  std::vector<Probe> probes_;
+  std::vector<std::string> columns_;
+  std::vector<std::string> part_names_;  // the law's Cauchy parts used by stress probes
+  bool replace_volumetric_ = false;      // mixed formulation: the "vol" part is p~ I
+  bool parts_from_law_ = true;           // false: only the total
+  bool needs_force_ = false;
+  Eigen::VectorXd force_;  // internal force of the converged state, all DOFs
+  std::vector<std::string> notes_;
+};
+
+}  // namespace isomuscle::io
