@@ -8,7 +8,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -17,9 +16,10 @@ namespace isomuscle::geometry {
 namespace {
 
 void check_points(int n, const char* what) {
-  if (n < 1 || n > 64) {
+  if (n < 1 || n > kMaxGaussLegendrePoints) {
     throw std::invalid_argument(std::string(what) + ": " + std::to_string(n) +
-                                " points per direction; use 1..64");
+                                " points per direction; use 1.." +
+                                std::to_string(kMaxGaussLegendrePoints));
   }
 }
 
@@ -29,50 +29,22 @@ std::array<std::vector<double>, 3> all_breakpoints(const NurbsVolume& volume) {
           volume.knots(2).breakpoints()};
 }
 
-}  // namespace
-
-// Abramowitz & Stegun 25.4.29: nodes are the roots of P_n, weights 2 / ((1 - x^2) P_n'(x)^2).
-// Newton from x0 = cos(pi (i + 3/4) / (n + 1/2)); the recurrence
-// (k + 1) P_{k+1} = (2k + 1) x P_k - k P_{k-1} gives P_n and P_n' = n (x P_n - P_{n-1}) / (x^2 -
-// 1).
-GaussLegendreRule gauss_legendre_rule(int n) {
-  check_points(n, "gauss_legendre_rule");
+// The n-point Gauss–Legendre rule (after checking n for `what`) and the breakpoints of the three
+// parametric directions: what both volume integrals loop over.
+struct SpanQuadrature {
   GaussLegendreRule rule;
-  rule.points.resize(static_cast<std::size_t>(n));
-  rule.weights.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < (n + 1) / 2; ++i) {
-    double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5));
-    double dp = 0.0;
-    for (int iteration = 0; iteration < 100; ++iteration) {
-      double p0 = 1.0;
-      double p1 = x;
-      for (int k = 1; k < n; ++k) {
-        const double p2 = ((2.0 * k + 1.0) * x * p1 - k * p0) / (k + 1.0);
-        p0 = p1;
-        p1 = p2;
-      }
-      dp = n * (x * p1 - p0) / (x * x - 1.0);  // p1 = P_n(x), p0 = P_{n-1}(x)
-      const double dx = p1 / dp;
-      x -= dx;
-      if (std::abs(dx) <= 1e-16)
-        break;
-    }
-    const double w = 2.0 / ((1.0 - x * x) * dp * dp);
-    rule.points[static_cast<std::size_t>(i)] = -x;
-    rule.points[static_cast<std::size_t>(n - 1 - i)] = x;
-    rule.weights[static_cast<std::size_t>(i)] = w;
-    rule.weights[static_cast<std::size_t>(n - 1 - i)] = w;
-  }
-  if (n % 2 == 1)
-    rule.points[static_cast<std::size_t>(n / 2)] = 0.0;
-  return rule;
+  std::array<std::vector<double>, 3> breaks;
+};
+SpanQuadrature span_quadrature(const NurbsVolume& volume, int n, const char* what) {
+  check_points(n, what);
+  return {gauss_legendre_rule(n), all_breakpoints(volume)};
 }
+
+}  // namespace
 
 // V = sum over spans and Gauss points of det J(xi) * |span| / 8 * w_a w_b w_c (thesis 5.13 map).
 double solid_volume(const NurbsVolume& volume, int points_per_direction) {
-  check_points(points_per_direction, "solid_volume");
-  const GaussLegendreRule rule = gauss_legendre_rule(points_per_direction);
-  const auto breaks = all_breakpoints(volume);
+  const auto [rule, breaks] = span_quadrature(volume, points_per_direction, "solid_volume");
   const int n = points_per_direction;
   double total = 0.0;
   Eigen::Vector3d point;
@@ -110,9 +82,8 @@ double solid_volume(const NurbsVolume& volume, int points_per_direction) {
 // V = 1/3 sum_faces (+/-) integral of H . (H_{d+1} x H_{d+2}) over the face xi_d = const, with
 // (d, d+1, d+2) cyclic and + on the face at the end of the domain.
 double solid_volume_from_boundary(const NurbsVolume& volume, int points_per_direction) {
-  check_points(points_per_direction, "solid_volume_from_boundary");
-  const GaussLegendreRule rule = gauss_legendre_rule(points_per_direction);
-  const auto breaks = all_breakpoints(volume);
+  const auto [rule, breaks] =
+      span_quadrature(volume, points_per_direction, "solid_volume_from_boundary");
   const int n = points_per_direction;
   double total = 0.0;
   Eigen::Vector3d point;

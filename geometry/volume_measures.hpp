@@ -6,17 +6,10 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "geometry/gauss_legendre.hpp"
 #include "geometry/nurbs_volume.hpp"
 
 namespace isomuscle::geometry {
-
-// Gauss–Legendre rule with n points on [-1, 1] (Newton iteration on P_n); 1 <= n <= 64, else
-// std::invalid_argument. Integrates polynomials of degree 2n - 1 exactly.
-struct GaussLegendreRule {
-  std::vector<double> points;
-  std::vector<double> weights;
-};
-GaussLegendreRule gauss_legendre_rule(int n);
 
 // Signed volume V = integral of det(dH/dxi) over the parametric box (m^3 for a solid in metres),
 // Gauss–Legendre with n points per direction in every knot span. det J of a rational map is

@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "iga/gauss_legendre.hpp"
+#include "geometry/gauss_legendre.hpp"
 
 namespace isomuscle::iga {
 
@@ -19,11 +19,11 @@ void for_each_side_point(const Space& space, Side side, Visit&& visit) {
   const int t = (d + 2) % 3;
   const auto& counts = space.element_counts();
   const int layer = side_end(side) == 0 ? 0 : counts[d] - 1;
-  std::array<GaussRule, 3> rules;
+  std::array<geometry::GaussLegendreRule, 3> rules;
   for (int k = 0; k < 3; ++k) {
     const int n =
         space.quadrature().points[k] > 0 ? space.quadrature().points[k] : vol.degree(k) + 1;
-    rules[k] = gauss_legendre(n);
+    rules[k] = geometry::gauss_legendre_rule(n);
   }
   const double xi_d = side_end(side) == 0 ? vol.domain(d)[0] : vol.domain(d)[1];
   geometry::VolumeBasis basis;

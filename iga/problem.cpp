@@ -5,33 +5,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "continuum/problem_setup.hpp"
+
 namespace isomuscle::iga {
-
-const char* to_string(Formulation f) {
-  switch (f) {
-    case Formulation::automatic:
-      return "automatic";
-    case Formulation::displacement:
-      return "displacement";
-    case Formulation::mixed:
-      return "mixed";
-  }
-  return "?";
-}
-
-Formulation parse_formulation(std::string_view name) {
-  if (name == "automatic") {
-    return Formulation::automatic;
-  }
-  if (name == "displacement") {
-    return Formulation::displacement;
-  }
-  if (name == "mixed") {
-    return Formulation::mixed;
-  }
-  throw std::invalid_argument("unknown formulation '" + std::string(name) +
-                              "' (valid: automatic, displacement, mixed)");
-}
 
 void ProblemOptions::validate() const {
   if (pressure_degree < 0 || pressure_degree > 4) {
@@ -64,35 +40,9 @@ Problem::Problem(const Space& space, const DofMap& dofs, const materials::Materi
         "iga::Problem: the DofMap has " + std::to_string(dofs_.num_control_points()) +
         " control points, the space " + std::to_string(space_.volume().num_control_points()));
   }
-  switch (options_.formulation) {
-    case Formulation::automatic:
-      formulation_ = law_.has_volumetric_split() &&
-                             law_.bulk_modulus() >= options_.mixed_threshold * law_.shear_modulus()
-                         ? Formulation::mixed
-                         : Formulation::displacement;
-      break;
-    case Formulation::displacement:
-      formulation_ = Formulation::displacement;
-      break;
-    case Formulation::mixed:
-      if (!law_.has_volumetric_split()) {
-        throw std::invalid_argument("formulation 'mixed' needs a law with a volumetric split; '" +
-                                    law_.name() + "' has none (use 'displacement' or 'automatic')");
-      }
-      formulation_ = Formulation::mixed;
-      break;
-  }
-  if (static_cast<int>(fibres_.size()) != space_.num_points()) {
-    throw std::invalid_argument("iga::Problem: " + std::to_string(fibres_.size()) +
-                                " fibre directions for " + std::to_string(space_.num_points()) +
-                                " quadrature points");
-  }
-  for (std::size_t i = 0; i < fibres_.size(); ++i) {
-    if (!fibres_[i].allFinite() || std::abs(fibres_[i].norm() - 1.0) > 1e-8) {
-      throw std::invalid_argument("iga::Problem: fibre direction " + std::to_string(i) +
-                                  " is not a finite unit vector");
-    }
-  }
+  formulation_ =
+      continuum::resolve_formulation(options_.formulation, law_, options_.mixed_threshold);
+  continuum::check_unit_fibres(fibres_, space_.num_points(), "iga::Problem");
   constraints_ = ConstrainedDofs(dofs_, conditions);
 
   const int nel = space_.num_elements();
@@ -191,25 +141,7 @@ std::string Problem::describe_failure(int e, const KernelStatus& s) const {
     msg << ", quadrature point " << s.point << " at X = (" << X[0] << ", " << X[1] << ", " << X[2]
         << "), xi = (" << xi[0] << ", " << xi[1] << ", " << xi[2] << ")";
   }
-  msg << ", t = " << time_ << " s: ";
-  switch (s.kind) {
-    case KernelStatus::Kind::inverted:
-      msg << "J = det F = " << s.value << " <= 0 (inverted)";
-      break;
-    case KernelStatus::Kind::inverted_dilatation:
-      msg << "projected dilatation J~ = " << s.value << " <= 0";
-      break;
-    case KernelStatus::Kind::material:
-      msg << "material law '" << law_.name() << "' failed (" << materials::to_string(s.material)
-          << ") at J = " << s.value;
-      break;
-    case KernelStatus::Kind::not_finite:
-      msg << "non-finite stress or tangent from law '" << law_.name() << "' at J = " << s.value;
-      break;
-    case KernelStatus::Kind::ok:
-      msg << "ok";
-      break;
-  }
+  msg << ", t = " << time_ << " s: " << continuum::describe_kernel_status(s, law_.name());
   return msg.str();
 }
 
@@ -235,15 +167,9 @@ solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool w
     for (int a = 0; a < static_cast<int>(cps.size()); ++a) {
       ws.ue.col(a) = u_full.segment<3>(3 * dofs_.node(cps[a]));
     }
-    MaterialContext ctx;
-    ctx.law = &law_;
-    ctx.fibres = fibres_.data() + static_cast<std::size_t>(e) * nqp;
-    ctx.time = time_;
-    ctx.dt = dt_;
-    if (hs > 0) {
-      ctx.history_committed = history_committed_.data() + static_cast<std::size_t>(e) * nqp * hs;
-      ctx.history_trial = history_trial_.data() + static_cast<std::size_t>(e) * nqp * hs;
-    }
+    const MaterialContext ctx = continuum::element_material_context(
+        law_, fibres_, e, nqp, time_, dt_, history_committed_,
+        history_trial_.data() + static_cast<std::size_t>(e) * nqp * hs);
     const ElementView view = element_view(space_, e);
     const std::size_t E = static_cast<std::size_t>(e);
     MixedBase base;

@@ -20,6 +20,8 @@
 #include <string_view>
 #include <vector>
 
+#include "continuum/formulation.hpp"
+#include "continuum/point_state.hpp"
 #include "iga/boundary_conditions.hpp"
 #include "iga/dof_map.hpp"
 #include "iga/element_kernels.hpp"
@@ -36,10 +38,10 @@
 
 namespace isomuscle::iga {
 
-enum class Formulation { automatic, displacement, mixed };
-const char* to_string(Formulation f);
-// "automatic" | "displacement" | "mixed"; throws std::invalid_argument listing the choices.
-Formulation parse_formulation(std::string_view name);
+// The formulation is that of continuum/formulation.hpp (shared with tet/).
+using continuum::Formulation;
+using continuum::parse_formulation;
+using continuum::to_string;
 
 struct ProblemOptions {
   // automatic: mixed when the law has a volumetric split AND is nearly incompressible,
@@ -62,17 +64,10 @@ struct ProblemOptions {
   void validate() const;
 };
 
-// Material state at one point of the committed state, for outputs.
-struct PointState {
-  FieldPoint field;                                  // position, displacement, F
-  double J = 1.0;                                    // det F
-  double J_bar = 1.0;                                // J~ (mixed formulation), else J
-  double p_bar = 0.0;                                // p~ (mixed formulation), else 0, Pa
-  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();       // second Piola–Kirchhoff, Pa
-  Eigen::Matrix3d cauchy = Eigen::Matrix3d::Zero();  // sigma = F S F^T / J (thesis 5.41), Pa
-  Eigen::Vector3d fibre = Eigen::Vector3d::UnitZ();  // reference N
-  Eigen::Vector3d fibre_deformed = Eigen::Vector3d::UnitZ();  // a = F N / |F N| (thesis 5.30)
-  double fibre_stretch = 1.0;                                 // |F N|
+// Material state at one point of the committed state, for outputs: the stress and fibre outputs of
+// continuum::PointStress (J, J~, p~, S, sigma, N, a, lambda_f) and the field at the point.
+struct PointState : continuum::PointStress {
+  FieldPoint field;  // position, displacement, F
 };
 
 class Problem : public solver::NonlinearProblem {

@@ -123,10 +123,7 @@ PointState Problem::evaluate_state(int e, const Eigen::Vector3d& xi, int qh) con
         << law_.name() << "' failed (" << materials::to_string(status) << ")";
     throw std::runtime_error(msg.str());
   }
-  st.cauchy = F * st.S * F.transpose() / st.J;
-  const Eigen::Vector3d FN = F * st.fibre;
-  st.fibre_stretch = FN.norm();
-  st.fibre_deformed = FN / st.fibre_stretch;
+  continuum::complete_point_stress(F, st);
   return st;
 }
 
@@ -138,15 +135,8 @@ void Problem::committed_element_pass(int e, ElementWorkspace& ws) const {
     ws.ue.col(static_cast<Eigen::Index>(a)) = committed_full_.segment<3>(3 * dofs_.node(cps[a]));
   }
   std::vector<double> scratch(static_cast<std::size_t>(nqp) * hs);
-  MaterialContext ctx;
-  ctx.law = &law_;
-  ctx.fibres = fibres_.data() + static_cast<std::size_t>(e) * nqp;
-  ctx.time = committed_time_;
-  ctx.dt = committed_dt_;
-  if (hs > 0) {
-    ctx.history_committed = history_previous_.data() + static_cast<std::size_t>(e) * nqp * hs;
-    ctx.history_trial = scratch.data();
-  }
+  const MaterialContext ctx = continuum::element_material_context(
+      law_, fibres_, e, nqp, committed_time_, committed_dt_, history_previous_, scratch.data());
   const ElementView view = element_view(space_, e);
   const KernelStatus ks = formulation_ == Formulation::mixed
                               ? mixed_kernel(view, ctx, pressure_, e, nullptr, false, ws)
@@ -179,15 +169,8 @@ std::vector<PointState> Problem::element_states(int e) const {
       st.field.u += R[a] * ws.ue.col(static_cast<Eigen::Index>(a));
     }
     st.field.F = ws.F[q];
-    st.J = ws.J[q];
-    st.J_bar = mixed ? ws.J_bar[q] : ws.J[q];
-    st.p_bar = mixed ? ws.p_bar[q] : 0.0;
-    st.S = ws.S[q];
-    st.cauchy = st.field.F * st.S * st.field.F.transpose() / st.J;
-    st.fibre = fibres_[static_cast<std::size_t>(e) * nqp + q];
-    const Eigen::Vector3d FN = st.field.F * st.fibre;
-    st.fibre_stretch = FN.norm();
-    st.fibre_deformed = FN / st.fibre_stretch;
+    continuum::point_stress_from_kernel(ws, q, mixed,
+                                        fibres_[static_cast<std::size_t>(e) * nqp + q], st);
   }
   return out;
 }

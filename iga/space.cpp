@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "iga/gauss_legendre.hpp"
+#include "geometry/gauss_legendre.hpp"
 
 namespace isomuscle::iga {
 
@@ -34,7 +34,7 @@ void QuadratureOptions::validate() const {
 Space::Space(geometry::NurbsVolume volume, QuadratureOptions options)
     : volume_(std::move(volume)), options_(options) {
   options_.validate();
-  std::array<GaussRule, 3> rules;
+  std::array<geometry::GaussLegendreRule, 3> rules;
   std::array<int, 3> npts{};
   for (int d = 0; d < 3; ++d) {
     const geometry::KnotVector& kv = volume_.knots(d);
@@ -43,7 +43,7 @@ Space::Space(geometry::NurbsVolume volume, QuadratureOptions options)
           std::string("iga::Space: the volume has no knot vector in direction ") + kDirection[d]);
     }
     npts[d] = options_.points[d] > 0 ? options_.points[d] : kv.degree() + 1;
-    rules[d] = gauss_legendre(npts[d]);
+    rules[d] = geometry::gauss_legendre_rule(npts[d]);
     for (int i = kv.degree(); i < kv.num_basis(); ++i) {
       if (kv[i] < kv[i + 1]) {
         span_of_position_[d].push_back(i);

@@ -22,6 +22,9 @@
 
 namespace isomuscle::iga {
 
+// Largest number of Gauss–Legendre points per direction of an element rule.
+inline constexpr int kMaxGaussPoints = 32;
+
 struct QuadratureOptions {
   // Gauss–Legendre points per parametric direction; 0 means p_d + 1 in direction d (exact for the
   // polynomial part of the stiffness of an affine element; the default of Hughes et al. 2005).

@@ -191,6 +191,37 @@ void add_boundary(IgaModel& model, const BoundarySettings& b, int index) {
   }
 }
 
+// [geometry] extract: the solid restricted to the scene's parameter sub-ranges (fractions of the
+// knot domain in scene naming, mirrored where the frame reverses a direction), cut exactly by knot
+// insertion to full multiplicity (Piegl & Tiller 5.3, geometry::extract); the parameter values are
+// kept, so frame.domain becomes the piece's domain and xi / faces refer to the piece.
+geometry::NurbsVolume extract_piece(const geometry::NurbsVolume& solid, const GeometrySettings& g,
+                                    SceneFrame& frame) {
+  geometry::NurbsVolume piece = solid;
+  for (int d = 0; d < 3; ++d) {
+    auto [a, b] = g.extract[static_cast<std::size_t>(d)];
+    if (a == 0.0 && b == 1.0)
+      continue;
+    const int s = frame.solid_direction[static_cast<std::size_t>(d)];
+    auto& domain = frame.domain[static_cast<std::size_t>(s)];
+    if (frame.reversed[static_cast<std::size_t>(s)]) {
+      const double lower = 1.0 - b;
+      b = 1.0 - a;
+      a = lower;
+    }
+    const double lo = domain[0] + a * (domain[1] - domain[0]);
+    const double hi = domain[0] + b * (domain[1] - domain[0]);
+    try {
+      piece = geometry::extract(piece, s, lo, hi);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("[geometry] extract.") +
+                                  to_string(static_cast<Direction>(d)) + ": " + e.what());
+    }
+    domain = piece.domain(s);
+  }
+  return piece;
+}
+
 }  // namespace
 
 std::string describe_point(const Eigen::Vector3d& x) {
@@ -274,6 +305,8 @@ IgaModel build_iga_model(const Scene& scene, int threads) {
       around_reversed(surface, closed_direction, model.unrefined);
   for (int d = 0; d < 3; ++d)
     frame.domain[static_cast<std::size_t>(d)] = model.unrefined.domain(d);
+  if (g.extracts())
+    model.unrefined = extract_piece(model.unrefined, g, frame);
 
   // Exact refinement: degree elevation first, then knot insertion (k-refinement, thesis 5.3).
   geometry::NurbsVolume volume = model.unrefined;

@@ -48,7 +48,7 @@ struct SceneFrame {
 // Everything a run keeps alive: the Problem refers to the space, DOF map and law, so they are held
 // by pointer and never move.
 struct IgaModel {
-  geometry::NurbsVolume unrefined;  // the shrink solid before refinement
+  geometry::NurbsVolume unrefined;  // the shrink solid (its [geometry] extract piece) unrefined
   SceneFrame frame;
   std::unique_ptr<iga::Space> space;
   std::unique_ptr<iga::DofMap> dofs;

@@ -128,6 +128,21 @@ void GeometrySettings::validate() const {
     throw InvalidSetting("centreline", "must be one of u, v (got \"w\")");
   }
   validate_in("refine", refine);
+  for (int d = 0; d < 3; ++d) {
+    const auto& [a, b] = extract[static_cast<std::size_t>(d)];
+    const std::string key = std::string("extract.") + to_string(static_cast<Direction>(d));
+    if (!(std::isfinite(a) && std::isfinite(b) && a >= 0.0 && b <= 1.0 && a < b)) {
+      throw InvalidSetting(key,
+                           "must be a range [a, b] of the parameter domain scaled to [0, 1] "
+                           "with 0 <= a < b <= 1 (got [" +
+                               format_number(a) + ", " + format_number(b) + "])");
+    }
+  }
+}
+
+bool GeometrySettings::extracts() const {
+  return std::any_of(extract.begin(), extract.end(),
+                     [](const auto& r) { return r[0] != 0.0 || r[1] != 1.0; });
 }
 
 void MaterialSettings::validate() const {

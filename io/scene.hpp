@@ -42,6 +42,13 @@ struct GeometrySettings {
   int surface = 0;                      // index of the B-spline surface in the file
   Direction centreline = Direction::v;  // parametric direction of the surface along the muscle
   RefinementSettings refine;
+  // extract = { u = [a, b], ... }: the solid restricted to a parameter sub-range per direction,
+  // given as fractions of the knot domain in the scene's naming (as probe xi), cut exactly by knot
+  // insertion (geometry::extract) after the shrink and before refinement. [0, 1] keeps the whole
+  // direction. Faces, xi and refinement counts then refer to the extracted piece (e.g. the 1/8
+  // torus of examples/torus with three symmetry planes).
+  std::array<std::array<double, 2>, 3> extract{{{0.0, 1.0}, {0.0, 1.0}, {0.0, 1.0}}};
+  bool extracts() const;  // some direction is restricted
   void validate() const;  // also checks that the IGES file exists
 };
 

@@ -64,6 +64,18 @@ GeometrySettings read_geometry(SceneTable t, const std::filesystem::path& base) 
     }
     r->finish();
   }
+  if (auto e = t.optional_table("extract")) {
+    for (Direction d : {Direction::u, Direction::v, Direction::w}) {
+      if (auto r = e->optional_numbers(to_string(d), 2, Range::closed(0.0, 1.0))) {
+        g.extract[static_cast<std::size_t>(d)] = {(*r)[0], (*r)[1]};
+        if (!((*r)[0] < (*r)[1])) {
+          e->fail(to_string(d), "must be an increasing range [a, b] with 0 <= a < b <= 1 (got [" +
+                                    format_number((*r)[0]) + ", " + format_number((*r)[1]) + "])");
+        }
+      }
+    }
+    e->finish();
+  }
   t.finish();
   validate_at(t, g);
   return g;

@@ -10,6 +10,9 @@
 //   iges = "barrel.igs"          # (required) relative to the scene file
 //   surface = 0                  # index of the B-spline surface in the file
 //   centreline = "v"             # "u" | "v": surface direction along the muscle
+//   # extract = { u = [0.0, 0.5], v = [0.0, 0.25] }  # sub-range per direction (u, v, w) as
+//   #                            fractions of the domain, 0 <= a < b <= 1, cut exactly before the
+//   #                            refinement; faces, xi and refinement then refer to the piece
 //   [geometry.refine]
 //   degree_elevation = [0, 0, 1] # degree raised in u, v, w (0..10)
 //   knot_insertion = [1, 3, 1]   # new knots per existing span in u, v, w (0..1000)

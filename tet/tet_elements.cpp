@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "geometry/volume_measures.hpp"
+#include "geometry/gauss_legendre.hpp"
 
 namespace isomuscle::tet {
 

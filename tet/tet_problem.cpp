@@ -6,33 +6,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "continuum/problem_setup.hpp"
+
 namespace isomuscle::tet {
-
-const char* to_string(TetFormulation f) {
-  switch (f) {
-    case TetFormulation::automatic:
-      return "automatic";
-    case TetFormulation::displacement:
-      return "displacement";
-    case TetFormulation::mixed:
-      return "mixed";
-  }
-  return "?";
-}
-
-TetFormulation parse_tet_formulation(std::string_view name) {
-  if (name == "automatic") {
-    return TetFormulation::automatic;
-  }
-  if (name == "displacement") {
-    return TetFormulation::displacement;
-  }
-  if (name == "mixed") {
-    return TetFormulation::mixed;
-  }
-  throw std::invalid_argument("unknown formulation '" + std::string(name) +
-                              "' (valid: automatic, displacement, mixed)");
-}
 
 void TetProblemOptions::validate() const {
   if (pressure_degree != 0 && pressure_degree != 1) {
@@ -55,33 +31,9 @@ TetProblem::TetProblem(const TetSpace& space, const materials::MaterialLaw& law,
       options_(options) {
   options_.validate();
   const TetMesh& mesh = space_.mesh();
-  switch (options_.formulation) {
-    case TetFormulation::automatic:
-      formulation_ =
-          law_.has_volumetric_split() ? TetFormulation::mixed : TetFormulation::displacement;
-      break;
-    case TetFormulation::displacement:
-      formulation_ = TetFormulation::displacement;
-      break;
-    case TetFormulation::mixed:
-      if (!law_.has_volumetric_split()) {
-        throw std::invalid_argument("formulation 'mixed' needs a law with a volumetric split; '" +
-                                    law_.name() + "' has none (use 'displacement' or 'automatic')");
-      }
-      formulation_ = TetFormulation::mixed;
-      break;
-  }
-  if (static_cast<int>(fibres_.size()) != space_.num_points()) {
-    throw std::invalid_argument("TetProblem: " + std::to_string(fibres_.size()) +
-                                " fibre directions for " + std::to_string(space_.num_points()) +
-                                " quadrature points");
-  }
-  for (std::size_t i = 0; i < fibres_.size(); ++i) {
-    if (!fibres_[i].allFinite() || std::abs(fibres_[i].norm() - 1.0) > 1e-8) {
-      throw std::invalid_argument("TetProblem: fibre direction " + std::to_string(i) +
-                                  " is not a finite unit vector");
-    }
-  }
+  // automatic: mixed for every law with a volumetric split (no kappa/mu threshold).
+  formulation_ = continuum::resolve_formulation(options_.formulation, law_, 0.0);
+  continuum::check_unit_fibres(fibres_, space_.num_points(), "TetProblem");
   // DOF numbering: prescribed DOFs marked, the others numbered in node order.
   const int ndof = 3 * mesh.num_nodes();
   std::vector<char> fixed(ndof, 0);
@@ -122,9 +74,10 @@ TetProblem::TetProblem(const TetSpace& space, const materials::MaterialLaw& law,
   // Pressure space: phi = 1, or (1, xi, eta, zeta) at the reference points; M_e factorised once.
   pressure_size_ = options_.pressure_degree == 0 ? 1 : 4;
   const int m = pressure_size_;
-  if (formulation_ == TetFormulation::mixed) {
+  if (formulation_ == Formulation::mixed) {
     pressure_values_.resize(static_cast<std::size_t>(nel) * nqp * m);
     mass_.resize(nel);
+    mass_matrix_.resize(nel);
     for (int e = 0; e < nel; ++e) {
       Eigen::MatrixXd M = Eigen::MatrixXd::Zero(m, m);
       for (int q = 0; q < nqp; ++q) {
@@ -137,6 +90,7 @@ TetProblem::TetProblem(const TetSpace& space, const materials::MaterialLaw& law,
         M.noalias() += space_.dv(e)[q] * p * p.transpose();
       }
       mass_[e].compute(M);
+      mass_matrix_[e] = M;
       if (mass_[e].info() != Eigen::Success) {
         throw std::invalid_argument("TetProblem: the pressure mass matrix of element " +
                                     std::to_string(e) +
@@ -145,7 +99,7 @@ TetProblem::TetProblem(const TetSpace& space, const materials::MaterialLaw& law,
       }
     }
   }
-  workspaces_.assign(solver::resolve_thread_count(options_.threads), TetWorkspace(nen, nqp, m));
+  workspaces_.assign(solver::resolve_thread_count(options_.threads), ElementWorkspace(nen, nqp, m));
   history_size_ = law_.history_size();
   history_committed_.assign(static_cast<std::size_t>(space_.num_points()) * history_size_, 0.0);
   for (int i = 0; history_size_ > 0 && i < space_.num_points(); ++i) {
@@ -206,7 +160,7 @@ Eigen::VectorXd TetProblem::full_displacement(const Eigen::VectorXd& u) const {
   return full;
 }
 
-std::string TetProblem::describe_failure(int e, const TetKernelStatus& s) const {
+std::string TetProblem::describe_failure(int e, const KernelStatus& s) const {
   std::ostringstream msg;
   msg << "tetrahedron " << e << " (region " << space_.mesh().element_region[e] << ")";
   if (s.point >= 0) {
@@ -214,26 +168,25 @@ std::string TetProblem::describe_failure(int e, const TetKernelStatus& s) const 
     msg << ", quadrature point " << s.point << " at X = (" << X[0] << ", " << X[1] << ", " << X[2]
         << ") m";
   }
-  msg << ", t = " << time_ << " s: ";
-  switch (s.kind) {
-    case TetKernelStatus::Kind::inverted:
-      msg << "J = det F = " << s.value << " <= 0 (inverted)";
-      break;
-    case TetKernelStatus::Kind::inverted_dilatation:
-      msg << "projected dilatation J~ = " << s.value << " <= 0";
-      break;
-    case TetKernelStatus::Kind::material:
-      msg << "material law '" << law_.name() << "' failed (" << materials::to_string(s.material)
-          << ") at J = " << s.value;
-      break;
-    case TetKernelStatus::Kind::not_finite:
-      msg << "non-finite stress or tangent from law '" << law_.name() << "' at J = " << s.value;
-      break;
-    case TetKernelStatus::Kind::ok:
-      msg << "ok";
-      break;
-  }
+  msg << ", t = " << time_ << " s: " << continuum::describe_kernel_status(s, law_.name());
   return msg.str();
+}
+
+// The element's data as a continuum::ElementView; the mixed kernel also gets phi at the points
+// and M_e (tet_problem.hpp), the displacement kernel F S only (continuum/element_kernels.hpp).
+KernelStatus TetProblem::element_kernel(int e, const MaterialContext& ctx, bool tangent,
+                                        ElementWorkspace& ws) const {
+  ElementView view;
+  view.nen = space_.nodes_per_element();
+  view.nqp = space_.points_per_element();
+  view.gradients = space_.gradients(e, 0);
+  view.dv = space_.dv(e);
+  if (formulation_ != Formulation::mixed) {
+    return continuum::displacement_kernel(view, ctx, tangent, ws);
+  }
+  view.pressure_size = pressure_size_;
+  view.pressure = pressure_values_.data() + static_cast<std::size_t>(e) * view.nqp * pressure_size_;
+  return continuum::mixed_kernel(view, ctx, mass_[e], mass_matrix_[e], nullptr, tangent, ws);
 }
 
 // Element loop: kernel per element into the thread's workspace, scatter by colour (DESIGN 2, 5).
@@ -242,35 +195,17 @@ solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, boo
   f_int_.setZero(u_full.size());
   const int nqp = space_.points_per_element();
   const int nen = space_.nodes_per_element();
-  const bool mixed = formulation_ == TetFormulation::mixed;
   const std::size_t hs = static_cast<std::size_t>(history_size_);
   auto body = [&](int e, int thread) -> solver::EvaluationStatus {
-    TetWorkspace& ws = workspaces_[thread];
+    ElementWorkspace& ws = workspaces_[thread];
     const auto el = space_.mesh().element(e);
     for (int a = 0; a < nen; ++a) {
       ws.ue.col(a) = u_full.segment<3>(3 * el[a]);
     }
-    TetMaterialContext ctx;
-    ctx.law = &law_;
-    ctx.fibres = fibres_.data() + static_cast<std::size_t>(e) * nqp;
-    ctx.time = time_;
-    ctx.dt = dt_;
-    if (hs > 0) {
-      ctx.history_committed = history_committed_.data() + static_cast<std::size_t>(e) * nqp * hs;
-      ctx.history_trial = history_trial_.data() + static_cast<std::size_t>(e) * nqp * hs;
-    }
-    TetElementView view;
-    view.nen = nen;
-    view.nqp = nqp;
-    view.gradients = space_.gradients(e, 0);
-    view.dv = space_.dv(e);
-    TetKernelStatus ks;
-    if (mixed) {
-      view.pressure = pressure_values_.data() + static_cast<std::size_t>(e) * nqp * pressure_size_;
-      ks = tet_mixed_kernel(view, ctx, pressure_size_, mass_[e], want_tangent, ws);
-    } else {
-      ks = tet_displacement_kernel(view, ctx, want_tangent, ws);
-    }
+    const MaterialContext ctx = continuum::element_material_context(
+        law_, fibres_, e, nqp, time_, dt_, history_committed_,
+        history_trial_.data() + static_cast<std::size_t>(e) * nqp * hs);
+    const KernelStatus ks = element_kernel(e, ctx, want_tangent, ws);
     if (!ks.ok()) {
       return solver::EvaluationStatus::failure(describe_failure(e, ks));
     }

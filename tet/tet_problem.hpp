@@ -5,7 +5,8 @@
 // * unknowns: the free DOFs (3 per node, DOF 3 n + k), prescribed values set in begin_step;
 // * evaluate(): r = f_int(u) - f_ext(t), K = dr/du, assembled with a pattern and scatter map built
 //   once, by element colouring (deterministic whatever the thread count);
-// * formulation: displacement, or the condensed mixed u–p–J (tet_kernels.hpp), automatically
+// * formulation: displacement, or the condensed mixed u–p–J (continuum/element_kernels.hpp),
+// automatically
 //   mixed for laws with a volumetric split (use 10-node elements: 4-node elements with a constant
 //   dilatation are the displacement formulation again and lock);
 // * history per quadrature point, committed + trial; failures (J <= 0, J~ <= 0, a failed local
@@ -19,20 +20,26 @@
 #include <string_view>
 #include <vector>
 
+#include "continuum/element_kernels.hpp"
+#include "continuum/formulation.hpp"
+#include "continuum/point_state.hpp"
 #include "materials/material_law.hpp"
 #include "solver/element_colouring.hpp"
 #include "solver/matrix_storage.hpp"
 #include "solver/nonlinear_problem.hpp"
 #include "solver/sparsity_pattern.hpp"
-#include "tet/tet_kernels.hpp"
 #include "tet/tet_space.hpp"
 
 namespace isomuscle::tet {
 
-enum class TetFormulation { automatic, displacement, mixed };
-const char* to_string(TetFormulation f);
-// "automatic" | "displacement" | "mixed"; throws std::invalid_argument listing the choices.
-TetFormulation parse_tet_formulation(std::string_view name);
+// The formulation and the element kernels are those of continuum/ (shared with iga/).
+using continuum::ElementView;
+using continuum::ElementWorkspace;
+using continuum::Formulation;
+using continuum::KernelStatus;
+using continuum::MaterialContext;
+using continuum::parse_formulation;
+using continuum::to_string;
 
 // A field of the reference position X (m) and time t (s).
 using VectorField = std::function<Eigen::Vector3d(const Eigen::Vector3d& X, double t)>;
@@ -46,7 +53,7 @@ struct TetDirichlet {
 };
 
 struct TetProblemOptions {
-  TetFormulation formulation = TetFormulation::automatic;
+  Formulation formulation = Formulation::automatic;
   // p~, J~ per element: 0 = constant (mean dilatation), 1 = linear discontinuous.
   int pressure_degree = 0;
   int threads = 0;  // 0 = OpenMP default
@@ -56,19 +63,12 @@ struct TetProblemOptions {
   void validate() const;
 };
 
-// Material state at one quadrature point of the committed state, for outputs.
-struct TetPointState {
+// Material state at one quadrature point of the committed state, for outputs: the stress and
+// fibre outputs of continuum::PointStress (J, J~, p~, S, sigma, N, a, lambda_f) and the field.
+struct TetPointState : continuum::PointStress {
   Eigen::Vector3d X = Eigen::Vector3d::Zero();             // reference position, m
   Eigen::Vector3d displacement = Eigen::Vector3d::Zero();  // m
   Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
-  double J = 1.0;                                    // det F
-  double J_bar = 1.0;                                // J~ (mixed formulation), else J
-  double p_bar = 0.0;                                // p~ (mixed formulation), else 0, Pa
-  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();       // second Piola–Kirchhoff, Pa
-  Eigen::Matrix3d cauchy = Eigen::Matrix3d::Zero();  // sigma = F S F^T / J (thesis 5.41), Pa
-  Eigen::Vector3d fibre = Eigen::Vector3d::UnitZ();  // reference N
-  Eigen::Vector3d fibre_deformed = Eigen::Vector3d::UnitZ();  // F N / |F N| (thesis 5.30)
-  double fibre_stretch = 1.0;                                 // |F N|
 };
 
 class TetProblem : public solver::NonlinearProblem {
@@ -87,7 +87,7 @@ class TetProblem : public solver::NonlinearProblem {
                                     solver::SparseMatrix* tangent) override;
   void commit_step(const Eigen::VectorXd& u) override;
 
-  TetFormulation formulation() const { return formulation_; }  // resolved, never automatic
+  Formulation formulation() const { return formulation_; }  // resolved, never automatic
   const TetSpace& space() const { return space_; }
   int num_colours() const { return colouring_.n_colours(); }
   const solver::SparsityPattern& pattern() const { return pattern_; }
@@ -119,7 +119,10 @@ class TetProblem : public solver::NonlinearProblem {
  private:
   solver::EvaluationStatus assemble(const Eigen::VectorXd& u_full, bool want_tangent,
                                     double* values);
-  std::string describe_failure(int e, const TetKernelStatus& s) const;
+  // Element e's kernel (displacement or mixed, by formulation_) at ws.ue into ws.
+  KernelStatus element_kernel(int e, const MaterialContext& ctx, bool tangent,
+                              ElementWorkspace& ws) const;
+  std::string describe_failure(int e, const KernelStatus& s) const;
 
   const TetSpace& space_;
   const materials::MaterialLaw& law_;
@@ -127,16 +130,17 @@ class TetProblem : public solver::NonlinearProblem {
   std::vector<TetDirichlet> conditions_;
   VectorField body_force_;
   TetProblemOptions options_;
-  TetFormulation formulation_ = TetFormulation::displacement;
+  Formulation formulation_ = Formulation::displacement;
   int num_free_ = 0;
   std::vector<int> free_index_;  // per DOF
   int pressure_size_ = 1;
-  std::vector<double> pressure_values_;  // nel x nqp x m
-  std::vector<Eigen::LLT<Eigen::MatrixXd>> mass_;
+  std::vector<double> pressure_values_;            // nel x nqp x m
+  std::vector<Eigen::LLT<Eigen::MatrixXd>> mass_;  // Cholesky factors of M_e
+  std::vector<Eigen::MatrixXd> mass_matrix_;       // M_e = int phi phi^T dV
   std::vector<std::vector<int>> element_dofs_;
   solver::SparsityPattern pattern_;
   solver::ElementColouring colouring_;
-  std::vector<TetWorkspace> workspaces_;
+  std::vector<ElementWorkspace> workspaces_;
   int history_size_ = 0;
   std::vector<double> history_committed_, history_trial_;
   std::vector<double> history_previous_;  // committed history before the last commit

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "geometry/gauss_legendre.hpp"
 #include "geometry/refinement.hpp"
-#include "iga/gauss_legendre.hpp"
 #include "iga/space.hpp"
 #include "iga_test_support.hpp"
 
@@ -14,7 +14,7 @@ namespace {
 
 TEST(GaussLegendre, IntegratesPolynomialsOfDegree2nMinus1Exactly) {
   for (int n = 1; n <= 12; ++n) {
-    const GaussRule r = gauss_legendre(n);
+    const geometry::GaussLegendreRule r = geometry::gauss_legendre_rule(n);
     for (int k = 0; k <= 2 * n - 1; ++k) {
       double sum = 0.0;
       for (int i = 0; i < n; ++i) {
@@ -33,8 +33,9 @@ TEST(GaussLegendre, IntegratesPolynomialsOfDegree2nMinus1Exactly) {
                                       std::log(2.0 * n + 1.0) - 2 * std::lgamma(2 * n + 1.0));
     EXPECT_NEAR(2.0 / (2 * n + 1) - sum, remainder, 1e-9 * remainder + 1e-15) << n;
   }
-  EXPECT_THROW(gauss_legendre(0), std::invalid_argument);
-  EXPECT_THROW(gauss_legendre(kMaxGaussPoints + 1), std::invalid_argument);
+  EXPECT_THROW(geometry::gauss_legendre_rule(0), std::invalid_argument);
+  EXPECT_THROW(geometry::gauss_legendre_rule(geometry::kMaxGaussLegendrePoints + 1),
+               std::invalid_argument);
 }
 
 TEST(Space, TabulatesPartitionOfUnityAndReproducesPosition) {

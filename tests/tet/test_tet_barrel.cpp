@@ -40,7 +40,7 @@ TEST(SlowTetBarrel, IsometricActivationConvergesAndKeepsVolume) {
   TetProblemOptions opt;
   opt.threads = 1;
   TetProblem problem(space, *law, nurbs_fibres(space, solid, 1), {ends}, {}, opt);
-  EXPECT_EQ(problem.formulation(), TetFormulation::mixed);
+  EXPECT_EQ(problem.formulation(), Formulation::mixed);
   solver::NewtonSettings ns;
   ns.absolute_residual_tolerance = 1e-9;  // N (above the round-off floor of kappa = 2e9 Pa)
   ns.absolute_energy_tolerance = 1e-18;

@@ -67,7 +67,7 @@ double relative_l2_error(int order, int n) {
   TetDirichlet bc;
   bc.nodes = boundary;
   TetProblemOptions opt;
-  opt.formulation = TetFormulation::displacement;
+  opt.formulation = Formulation::displacement;
   opt.threads = 1;
   TetProblem problem(space, *law, constant_fibres(space, Eigen::Vector3d::UnitZ()), {bc},
                      body_force, opt);

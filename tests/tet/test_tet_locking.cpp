@@ -20,7 +20,7 @@ constexpr double kLength = 0.04;  // m
 constexpr double kWidth = 0.01;   // m
 
 // Mean x displacement of the free end z = L (m).
-double tip_deflection(int order, int n, TetFormulation formulation) {
+double tip_deflection(int order, int n, Formulation formulation) {
   const TetMesh mesh = structured_box(
       Eigen::Vector3d::Zero(), Eigen::Vector3d(kWidth, kWidth, kLength), {n, n, 4 * n}, order);
   const TetSpace space(mesh);
@@ -77,10 +77,10 @@ TEST(TetLocking, MixedTenNodeDoesNotLock) {
   const double E = 9.0 * kappa * mu / (3.0 * kappa + mu);
   const double beam =
       5.0 * kWidth * kWidth * std::pow(kLength, 4) / (8.0 * E * std::pow(kWidth, 4) / 12.0);
-  const double mixed_coarse = tip_deflection(2, 2, TetFormulation::mixed);
-  const double mixed_fine = tip_deflection(2, 4, TetFormulation::mixed);
-  const double disp10_coarse = tip_deflection(2, 2, TetFormulation::displacement);
-  const double disp4_fine = tip_deflection(1, 4, TetFormulation::displacement);
+  const double mixed_coarse = tip_deflection(2, 2, Formulation::mixed);
+  const double mixed_fine = tip_deflection(2, 4, Formulation::mixed);
+  const double disp10_coarse = tip_deflection(2, 2, Formulation::displacement);
+  const double disp4_fine = tip_deflection(1, 4, Formulation::displacement);
   std::printf(
       "tip deflection (m): beam theory %.4e; mixed tet10 n=2 %.4e, n=4 %.4e; "
       "displacement tet10 n=2 %.4e, tet4 n=4 %.4e\n",

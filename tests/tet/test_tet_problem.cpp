@@ -62,7 +62,7 @@ std::vector<int> all_boundary_nodes(const TetMesh& mesh) {
 
 struct PatchCase {
   int order;
-  TetFormulation formulation;
+  Formulation formulation;
   int pressure_degree;
   bool curved = false;
   int quadrature_degree = 0;
@@ -125,21 +125,20 @@ TEST_P(PatchTest, AffineDisplacementReproduced) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Tet, PatchTest,
-                         ::testing::Values(PatchCase{1, TetFormulation::displacement, 0},
-                                           PatchCase{2, TetFormulation::displacement, 0},
-                                           PatchCase{2, TetFormulation::mixed, 0},
-                                           PatchCase{2, TetFormulation::mixed, 1},
-                                           PatchCase{2, TetFormulation::displacement, 0, true, 4},
-                                           PatchCase{2, TetFormulation::mixed, 0, true, 4}));
+                         ::testing::Values(PatchCase{1, Formulation::displacement, 0},
+                                           PatchCase{2, Formulation::displacement, 0},
+                                           PatchCase{2, Formulation::mixed, 0},
+                                           PatchCase{2, Formulation::mixed, 1},
+                                           PatchCase{2, Formulation::displacement, 0, true, 4},
+                                           PatchCase{2, Formulation::mixed, 0, true, 4}));
 
 // dr/du assembled against central differences of the residual: the Lu (2010) Hill muscle,
 // activated (t = 20 ms into the activation ramp, dt = 5 ms), fibres varying in direction, a
 // displaced state; displacement and condensed mixed formulations.
 TEST(TetTangent, MatchesCentralDifferencesForActivatedHillMuscle) {
   for (const PatchCase c :
-       {PatchCase{1, TetFormulation::displacement, 0},
-        PatchCase{2, TetFormulation::displacement, 0}, PatchCase{2, TetFormulation::mixed, 0},
-        PatchCase{2, TetFormulation::mixed, 1}}) {
+       {PatchCase{1, Formulation::displacement, 0}, PatchCase{2, Formulation::displacement, 0},
+        PatchCase{2, Formulation::mixed, 0}, PatchCase{2, Formulation::mixed, 1}}) {
     const TetMesh mesh = structured_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.01, 0.01, 0.02),
                                         {1, 1, 2}, c.order);
     const TetSpace space(mesh);
