@@ -75,7 +75,7 @@ int run(const RunArgs& args) {
       std::cerr << progress_text(p) << "\n";
     }
   };
-  std::cerr << "isomuscle run: " << args.scene << " -> " << options.out_dir.string() << "\n";
+  std::cout << "isomuscle run: " << args.scene << " -> " << options.out_dir.string() << std::endl;
   io::RunResult result;
   try {
     result = io::run_iga(scene, options);

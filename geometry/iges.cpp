@@ -150,6 +150,9 @@ Handle(Geom_BSplineSurface)
   return new Geom_BSplineSurface(poles, w, ku, kv, mu, mv, p, q, false, false);
 }
 
+// Largest coordinate magnitude accepted from a file, m (1 km: far beyond any muscle).
+constexpr double kMaxCoordinate = 1e3;
+
 bool is_clamped(const std::vector<double>& knots, int degree) {
   const std::size_t n = knots.size();
   for (int k = 1; k <= degree; ++k) {
@@ -196,6 +199,16 @@ IgesSurface convert(const Handle(IGESGeom_BSplineSurface) & e, double metres_per
         transformation.Transforms(x);
       points.emplace_back(metres_per_unit * x.X(), metres_per_unit * x.Y(),
                           metres_per_unit * x.Z());
+      // A damaged coordinate (1e300) passes the syntax check but overflows every later volume and
+      // Jacobian to inf/NaN; a muscle is centimetres, so anything beyond kMaxCoordinate is
+      // reported here, naming the control point.
+      if (!(points.back().array().abs() <= kMaxCoordinate).all()) {
+        std::ostringstream msg;
+        msg << "control point (" << i << ", " << j << ") = (" << points.back().x() << ", "
+            << points.back().y() << ", " << points.back().z() << ") m lies beyond "
+            << kMaxCoordinate << " m of the origin (wrong unit or damaged coordinates)";
+        throw std::runtime_error(msg.str());
+      }
       const double w = polynomial ? 1.0 : e->Weight(i, j);
       if (!(std::isfinite(w) && w > 0.0)) {
         throw std::runtime_error("weight (" + std::to_string(i) + ", " + std::to_string(j) +

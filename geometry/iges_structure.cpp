@@ -113,6 +113,23 @@ void check_bspline_surface_parameters(const std::vector<std::string>& p, const s
                                "', not a real number (damaged parameter data)");
     }
   }
+  // The weights must be positive (IGES 5.3 §4.23). Checked on the text: OpenCASCADE 7.6 reads a
+  // zero or negative weight silently and then reports the surface as polynomial, so the bad
+  // weight would vanish (all weights taken as 1) instead of being reported.
+  const long first_weight = 10 + (k1 + m1 + 2) + (k2 + m2 + 2);
+  for (long k = 0; k < (k1 + 1) * (k2 + 1); ++k) {
+    const std::size_t at = static_cast<std::size_t>(first_weight + k);
+    std::string text = p[at];
+    for (char& ch : text) {
+      if (ch == 'D' || ch == 'd')
+        ch = 'E';
+    }
+    if (!(std::stod(text) > 0.0)) {
+      throw std::runtime_error(where + ": parameter " + std::to_string(at + 1) + ", weight W(" +
+                               std::to_string(k % (k1 + 1)) + ", " + std::to_string(k / (k1 + 1)) +
+                               "), is " + p[at] + "; weights must be positive");
+    }
+  }
 }
 
 }  // namespace

@@ -169,6 +169,13 @@ Centreline centreline_control_points(const NurbsSurface& surface, int closed_dir
 NurbsVolume shrink_to_centreline(const NurbsSurface& surface, int closed_direction,
                                  double tolerance) {
   check_surface_direction(closed_direction, "shrink_to_centreline");
+  // All control points at one place: the seam check passes trivially (no gap) and the volume
+  // comes out 0; say what is wrong with the surface itself rather than with the solid.
+  if (!(bounding_box_diagonal(surface.points()) > 0.0)) {
+    throw std::invalid_argument("surface is degenerate: all " +
+                                std::to_string(surface.points().size()) +
+                                " control points coincide (zero bounding box)");
+  }
   const Centreline centreline = centreline_control_points(surface, closed_direction, tolerance);
   const NurbsSurface s = closed_direction_first(surface, closed_direction);
   NurbsVolume volume = build_volume(s, centreline);

@@ -27,6 +27,7 @@ using Clock = std::chrono::steady_clock;
 using Json = nlohmann::ordered_json;
 
 constexpr double kFloor = 10.0;  // round-off floors of the Newton tolerances, see newton_settings
+constexpr double kCorrection = 1e-7;  // round-off correction tolerance / body size, ditto
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -139,6 +140,10 @@ std::vector<double> output_times(const OutputSettings& o, double end) {
 //   energy    eatol = atol kFloor eps^(1/2) V^(1/3)       (J: atol times a displacement correction
 //                                                          of ~1e-7 of the body size)
 // far below any force or work of interest (for the barrel: atol ~ 2e-9 N against forces of ~10 N).
+// The actual floor can still lie a few times above atol (measured on the 1/8 torus: |r| stalls at
+// ~2e-9 N), so a residual that stagnates while the corrections are below
+//   correction  kCorrection V^(1/3)                      (m: 1e-7 of the body size, nanometres)
+// is accepted as converged at round-off (solver::NewtonSettings::correction_tolerance).
 solver::NewtonSettings newton_settings(const SolverSettings& s, const IgaModel& model) {
   solver::NewtonSettings n;
   n.max_iterations = s.newton_max_iterations;
@@ -154,6 +159,7 @@ solver::NewtonSettings newton_settings(const SolverSettings& s, const IgaModel& 
   n.absolute_residual_tolerance = kFloor * eps * modulus * std::cbrt(volume * volume);
   n.absolute_energy_tolerance =
       n.absolute_residual_tolerance * kFloor * std::sqrt(eps) * std::cbrt(volume);
+  n.correction_tolerance = kCorrection * std::cbrt(volume);
   return n;
 }
 

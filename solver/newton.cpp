@@ -38,6 +38,7 @@ void NewtonSettings::validate() const {
   check_non_negative("absolute_residual_tolerance", absolute_residual_tolerance);
   check_non_negative("relative_energy_tolerance", relative_energy_tolerance);
   check_non_negative("absolute_energy_tolerance", absolute_energy_tolerance);
+  check_non_negative("correction_tolerance", correction_tolerance);
   if (relative_residual_tolerance == 0.0 && absolute_residual_tolerance == 0.0) {
     throw SettingError("relative_residual_tolerance",
                        "and 'absolute_residual_tolerance' cannot both be 0 (no residual would "
@@ -215,6 +216,14 @@ NewtonResult NewtonSolver::solve(NonlinearProblem& problem, Eigen::VectorXd& u) 
                                  "(line search off): ") +
                 last_failure);
       }
+      const double correction = du_.lpNorm<Eigen::Infinity>();
+      if (s.correction_tolerance > 0.0 && correction <= s.correction_tolerance) {
+        return finish(NewtonStop::Converged,
+                      "converged at round-off after " + std::to_string(k - 1) +
+                          " iterations: no step length reduces |r| = " + sci(r_norm) +
+                          " further and the correction max|du| = " + sci(correction) +
+                          " <= " + sci(s.correction_tolerance));
+      }
       return finish(NewtonStop::LineSearchFailed,
                     where + "no step length down to 2^-" + std::to_string(max_halvings) +
                         " reduced |r| by the Armijo condition (last: " + last_failure +
@@ -253,6 +262,17 @@ NewtonResult NewtonSolver::solve(NonlinearProblem& problem, Eigen::VectorXd& u) 
                                                " iterations: |r| = " + sci(r_norm) +
                                                " <= " + sci(residual_target) + ", energy " +
                                                sci(energy) + " <= " + sci(energy_target));
+    }
+    // Round-off floor (NewtonSettings::correction_tolerance): the residual stagnates (it fell by
+    // less than half in this iteration, where a converging Newton iteration contracts by orders
+    // of magnitude) while the correction is negligible.
+    const double correction = alpha * du_.lpNorm<Eigen::Infinity>();
+    if (s.correction_tolerance > 0.0 && correction <= s.correction_tolerance &&
+        record.contraction > 0.5) {
+      return finish(NewtonStop::Converged,
+                    "converged at round-off in " + std::to_string(k) + " iterations: |r| = " +
+                        sci(r_norm) + " stagnates and the correction max|du| = " + sci(correction) +
+                        " <= " + sci(s.correction_tolerance));
     }
     if (!s.line_search && r_norm > s.divergence_factor * r0) {
       return finish(NewtonStop::Diverged,

@@ -34,6 +34,13 @@ struct NewtonSettings {
   double absolute_residual_tolerance = 0.0;   // atol, residual units (e.g. N): the floor
   double relative_energy_tolerance = 1e-12;   // etol, of E_1
   double absolute_energy_tolerance = 0.0;     // eatol, energy units (e.g. N mm): the floor
+  // Round-off acceptance: when the residual has reached its round-off floor (which can lie above
+  // atol) it stops decreasing: no step length reduces it, or an iteration reduces it by less than
+  // half. If the Newton correction is then no larger than this in every entry (units of u, e.g.
+  // m), u is known as well as the arithmetic allows: the solve counts as converged and says so.
+  // A small correction alone is not enough (a stiff volumetric mode can carry a large residual
+  // with a tiny correction). 0 = off.
+  double correction_tolerance = 0.0;
   bool line_search = true;
   int max_line_search_halvings = 10;  // smallest step 2^-10
   double armijo_coefficient = 1e-4;   // c in (0, 1)

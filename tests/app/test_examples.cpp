@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_support.hpp"
 #include "geometry/volume_measures.hpp"
 #include "io/iga_run_probes.hpp"
 #include "io/iga_run_setup.hpp"
@@ -33,15 +34,12 @@ namespace isomuscle {
 namespace {
 
 namespace fs = std::filesystem;
+using cli_test::CliResult;
+using cli_test::read_csv;
+using cli_test::read_text;
+using Table = cli_test::CsvTable;
 
 const fs::path kExamples = fs::path(ISOMUSCLE_SOURCE_DIR) / "examples";
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 // The committed scenes, examples/*/*.toml, sorted.
 std::vector<fs::path> committed_scenes() {
@@ -150,54 +148,6 @@ TEST(ExampleScenes, ExtractRangeErrorsNameTheKeyAndLine) {
 
 // ---- SlowExamples: small versions of the committed examples through the CLI ----
 
-struct CliResult {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
-
-// A CSV file as columns of numbers (header row first).
-struct Table {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> rows;
-  double last(const std::string& name) const {
-    for (std::size_t i = 0; i < header.size(); ++i)
-      if (header[i] == name)
-        return rows.back()[i];
-    ADD_FAILURE() << "no column " << name;
-    return std::nan("");
-  }
-  double first(const std::string& name) const {
-    for (std::size_t i = 0; i < header.size(); ++i)
-      if (header[i] == name)
-        return rows.front()[i];
-    ADD_FAILURE() << "no column " << name;
-    return std::nan("");
-  }
-};
-
-Table read_csv(const fs::path& path) {
-  Table t;
-  std::ifstream in(path);
-  std::string line;
-  bool first = true;
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string cell;
-    std::vector<double> row;
-    while (std::getline(ss, cell, ',')) {
-      if (first)
-        t.header.push_back(cell);
-      else
-        row.push_back(std::stod(cell));
-    }
-    if (!first)
-      t.rows.push_back(row);
-    first = false;
-  }
-  return t;
-}
-
 // Replaces the first line that starts with `start` by `line`; a failure when there is none.
 std::string replace_line(std::string text, const std::string& start, const std::string& line) {
   std::size_t at = text.rfind(start, 0) == 0 ? 0 : text.find("\n" + start);
@@ -244,21 +194,8 @@ class SlowExamples : public ::testing::Test {
   }
 
   static CliResult run(const fs::path& scene, const fs::path& out) {
-    const fs::path err = dir_ / "stderr.txt";
-    const std::string command = std::string(ISOMUSCLE_EXE) + " run " + scene.string() + " --out " +
-                                out.string() + " 2> " + err.string();
-    CliResult r;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr)
-      return r;
-    char buffer[4096];
-    std::size_t n;
-    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0)
-      r.out.append(buffer, n);
-    const int status = pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    r.err = read_text(err);
-    return r;
+    return cli_test::run_isomuscle("run " + scene.string() + " --out " + out.string(),
+                                   dir_ / "stderr.txt");
   }
 
   // Runs a small copy; checks that it converged to the end time; returns its probes.

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli_support.hpp"
 #include "geometry/iges.hpp"
 #include "geometry/shapes.hpp"
 #include "geometry/shrink.hpp"
@@ -22,12 +23,7 @@ namespace isomuscle {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliResult {
-  int code = -1;  // exit status; 128 + signal when killed by one
-  std::string out;
-  std::string err;
-};
+using cli_test::CliResult;
 
 class GeometryCli : public ::testing::Test {
  protected:
@@ -40,24 +36,7 @@ class GeometryCli : public ::testing::Test {
   static void TearDownTestSuite() { fs::remove_all(dir_); }
 
   static CliResult run(const std::string& arguments) {
-    const fs::path err = dir_ / "stderr.txt";
-    const std::string command =
-        std::string(ISOMUSCLE_EXE) + " " + arguments + " 2> " + err.string();
-    CliResult r;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr)
-      return r;
-    char buffer[4096];
-    std::size_t n;
-    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0)
-      r.out.append(buffer, n);
-    const int status = pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    std::ifstream in(err);
-    std::stringstream text;
-    text << in.rdbuf();
-    r.err = text.str();
-    return r;
+    return cli_test::run_isomuscle(arguments, dir_ / "stderr.txt");
   }
 
   static nlohmann::json solid_json(const fs::path& file, const std::string& extra = "") {

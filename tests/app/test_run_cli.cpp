@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_support.hpp"
 #include "geometry/iges.hpp"
 #include "io/run_summary.hpp"
 
@@ -25,47 +26,10 @@ namespace isomuscle {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct CliResult {
-  int code = -1;  // exit status; 128 + signal when killed by one
-  std::string out;
-  std::string err;
-};
-
-// A CSV file as columns of numbers (header row first).
-struct Table {
-  std::vector<std::string> header;
-  std::vector<std::vector<double>> rows;
-  std::size_t column(const std::string& name) const {
-    for (std::size_t i = 0; i < header.size(); ++i)
-      if (header[i] == name)
-        return i;
-    ADD_FAILURE() << "no column " << name;
-    return 0;
-  }
-};
-
-Table read_csv(const fs::path& path) {
-  Table t;
-  std::ifstream in(path);
-  std::string line;
-  bool first = true;
-  while (std::getline(in, line)) {
-    std::stringstream ss(line);
-    std::string cell;
-    std::vector<double> row;
-    while (std::getline(ss, cell, ',')) {
-      if (first)
-        t.header.push_back(cell);
-      else
-        row.push_back(std::stod(cell));
-    }
-    if (!first)
-      t.rows.push_back(row);
-    first = false;
-  }
-  return t;
-}
+using cli_test::CliResult;
+using cli_test::read_csv;
+using cli_test::read_text;
+using Table = cli_test::CsvTable;
 
 std::string replace_all(std::string text, const std::string& from, const std::string& to) {
   for (std::size_t at = text.find(from); at != std::string::npos;
@@ -101,24 +65,7 @@ class RunCli : public ::testing::Test {
   }
 
   static CliResult run(const std::string& arguments) {
-    const fs::path err = dir_ / "stderr.txt";
-    const std::string command =
-        std::string(ISOMUSCLE_EXE) + " " + arguments + " 2> " + err.string();
-    CliResult r;
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr)
-      return r;
-    char buffer[4096];
-    std::size_t n;
-    while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0)
-      r.out.append(buffer, n);
-    const int status = pclose(pipe);
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-    std::ifstream in(err);
-    std::stringstream text;
-    text << in.rdbuf();
-    r.err = text.str();
-    return r;
+    return cli_test::run_isomuscle(arguments, dir_ / "stderr.txt");
   }
 
   static nlohmann::json summary(const fs::path& out) {

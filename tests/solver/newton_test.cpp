@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <stdexcept>
 #include <string>
@@ -195,6 +196,50 @@ TEST(Newton, ReportsWhyItStopped) {
   EXPECT_THROW(newton.solve(problem, wrong_size), std::invalid_argument);
 }
 
+// A residual carrying round-off noise of amplitude 1e-9 (erratic in u, standing in for the
+// cancellation error of a nearly incompressible body, whose floor can lie above the absolute
+// tolerance): the line search cannot reduce |r| below the noise. Without the correction tolerance
+// the solve fails (it wanders at the floor until max_iterations, or the line search stalls); with
+// it the solve is accepted once the corrections are below it, and u is then within the noise's
+// reach of the exact solution (|du| ~ noise / lambda_min(K)).
+class NoisyReactionDiffusion : public testing::ReactionDiffusionProblem {
+ public:
+  NoisyReactionDiffusion() : ReactionDiffusionProblem(8, 50.0, 2.0) {}
+  EvaluationStatus evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& r,
+                            SparseMatrix* tangent) override {
+    const EvaluationStatus status = ReactionDiffusionProblem::evaluate(u, r, tangent);
+    for (Eigen::Index i = 0; i < r.size(); ++i) {
+      r[i] += 1e-9 * std::sin(1e13 * u[i] + static_cast<double>(i));  // erratic in u
+    }
+    return status;
+  }
+};
+
+TEST(Newton, AResidualStagnatingAtRoundOffIsConvergedOnlyWithASmallCorrection) {
+  NoisyReactionDiffusion problem;
+  problem.begin_step(1.0, 1.0);
+  NewtonSettings settings;
+  settings.relative_residual_tolerance = 1e-16;  // below the noise: unreachable
+  settings.max_iterations = 50;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
+  NewtonResult strict = NewtonSolver(settings).solve(problem, u);
+  EXPECT_FALSE(strict.converged) << strict.message;  // wanders at the floor or stalls
+
+  settings.correction_tolerance = 1e-20;  // far below what the noise leaves: still a failure
+  u.setZero();
+  const NewtonResult too_tight = NewtonSolver(settings).solve(problem, u);
+  EXPECT_FALSE(too_tight.converged) << too_tight.message;
+
+  settings.correction_tolerance = 1e-8;
+  u.setZero();
+  const NewtonResult accepted = NewtonSolver(settings).solve(problem, u);
+  EXPECT_TRUE(accepted.converged) << accepted.message;
+  std::printf("%s\n", accepted.message.c_str());
+  EXPECT_NE(accepted.message.find("round-off"), std::string::npos) << accepted.message;
+  EXPECT_LT((u - problem.exact()).lpNorm<Eigen::Infinity>(), 1e-8);
+  EXPECT_LT(accepted.final_residual_norm, 1e-7);  // the noise floor, sqrt(64) * 1e-9 ~ 8e-9
+}
+
 TEST(Newton, SettingsAreValidated) {
   const auto key_of = [](NewtonSettings settings) {
     try {
@@ -219,6 +264,9 @@ TEST(Newton, SettingsAreValidated) {
   s = {};
   s.absolute_energy_tolerance = std::nan("");
   EXPECT_EQ(key_of(s), "absolute_energy_tolerance");
+  s = {};
+  s.correction_tolerance = -1e-9;
+  EXPECT_EQ(key_of(s), "correction_tolerance");
   s = {};
   s.divergence_factor = 0.5;
   EXPECT_EQ(key_of(s), "divergence_factor");
