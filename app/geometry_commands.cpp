@@ -308,6 +308,13 @@ void run_examples(const ExamplesArgs& args) {
     }
     std::cout << "\n";
   }
+  // Cook's membrane is unit-free: written in metres whatever --unit says, so that the numbers of
+  // the benchmark (48, 44, 60) are the scene's numbers.
+  const std::filesystem::path cook = std::filesystem::path(args.out) / "cook.igs";
+  geo::write_iges(cook, {geo::cook_membrane_surface()}, geo::IgesUnit::kMetre);
+  std::cout << cook.string()
+            << ": Cook's membrane, the tapered panel (0, 0), (48, 44), (48, 60), (0, 44) "
+               "(unit-free benchmark, written as metres)\n";
 }
 
 // Runs a command body; errors become a message on stderr and exit code 1.

@@ -142,4 +142,26 @@ NurbsSurface NurbsSurface::transposed() const {
   return NurbsSurface(v_, u_, std::move(pts), std::move(w));
 }
 
+// Knots u'_k = a + b - u_{m-k}, control points i -> n_u - 1 - i.
+NurbsSurface NurbsSurface::reversed_u() const {
+  const std::vector<double>& u = u_.knots();
+  const double a = u_.domain_begin();
+  const double b = u_.domain_end();
+  std::vector<double> reversed(u.size());
+  for (std::size_t k = 0; k < u.size(); ++k)
+    reversed[k] = a + b - u[u.size() - 1 - k];
+  const int nu = count_u();
+  const int nv = count_v();
+  std::vector<Eigen::Vector3d> pts(points_.size());
+  std::vector<double> w(weights_.size());
+  for (int j = 0; j < nv; ++j) {
+    for (int i = 0; i < nu; ++i) {
+      pts[static_cast<std::size_t>(i + nu * j)] = point(nu - 1 - i, j);
+      w[static_cast<std::size_t>(i + nu * j)] = weight(nu - 1 - i, j);
+    }
+  }
+  return NurbsSurface(KnotVector(std::move(reversed), u_.degree()), v_, std::move(pts),
+                      std::move(w));
+}
+
 }  // namespace isomuscle::geometry

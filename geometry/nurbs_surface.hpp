@@ -36,6 +36,9 @@ class NurbsSurface {
   bool is_closed(int dir, double tol = 1e-10) const;
   // Same surface with u and v exchanged.
   NurbsSurface transposed() const;
+  // Same surface with u reversed: S'(u, v) = S(a + b - u, v) on the same domain [a, b]; the
+  // normal dS/du x dS/dv flips.
+  NurbsSurface reversed_u() const;
 
  private:
   KnotVector u_, v_;

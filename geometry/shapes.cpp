@@ -211,6 +211,14 @@ NurbsSurface depressor_anguli_oris(CircleForm form) {
   return elliptic_tube(along, centres, first, second, form);
 }
 
+NurbsSurface cook_membrane_surface() {
+  const KnotVector linear = KnotVector::clamped(1, {});
+  // Index i + 2 j: (u, v) = (0, 0), (1, 0), (0, 1), (1, 1).
+  std::vector<Eigen::Vector3d> points = {
+      {0.0, 0.0, 0.0}, {48.0, 44.0, 0.0}, {0.0, 44.0, 0.0}, {48.0, 60.0, 0.0}};
+  return NurbsSurface(linear, linear, std::move(points), std::vector<double>(4, 1.0));
+}
+
 std::vector<ExampleShape> example_shapes(CircleForm form) {
   std::vector<ExampleShape> shapes;
   const double rb = 0.5 * kConeBottomDiameter;

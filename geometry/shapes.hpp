@@ -91,6 +91,13 @@ double half_torus_volume(double ring_radius, double tube_radius);  // pi^2 R r^2
 // centre of the base.
 NurbsSurface depressor_anguli_oris(CircleForm form = CircleForm::kNinePoint);
 
+// Cook's membrane (R. D. Cook, Improved two-dimensional finite element, J. Struct. Div. ASCE 100,
+// 1974): the tapered panel with corners (0, 0), (48, 44), (48, 60), (0, 44) in the xy plane as a
+// bilinear B-spline patch, u along x (from the clamped edge x = 0 to the loaded edge x = 48), v
+// upwards, normal +z. The benchmark is unit-free; the numbers are written as metres. A sheet, not
+// a tube: scenes extrude it (examples/cook).
+NurbsSurface cook_membrane_surface();
+
 struct ExampleShape {
   std::string name;         // file stem: cone, barrel, torus, half_torus, dao
   std::string description;  // one line

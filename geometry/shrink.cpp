@@ -39,28 +39,6 @@ NurbsSurface closed_direction_first(const NurbsSurface& surface, int closed_dire
   return closed_direction == 0 ? surface : surface.transposed();
 }
 
-// Same surface with u reversed: knots u'_k = a + b - u_{m-k}, points i -> n_u - 1 - i.
-NurbsSurface reverse_u(const NurbsSurface& s) {
-  const std::vector<double>& u = s.knots_u().knots();
-  const double a = s.knots_u().domain_begin();
-  const double b = s.knots_u().domain_end();
-  std::vector<double> reversed(u.size());
-  for (std::size_t k = 0; k < u.size(); ++k)
-    reversed[k] = a + b - u[u.size() - 1 - k];
-  const int nu = s.count_u();
-  const int nv = s.count_v();
-  std::vector<Eigen::Vector3d> points(s.points().size());
-  std::vector<double> weights(s.weights().size());
-  for (int j = 0; j < nv; ++j) {
-    for (int i = 0; i < nu; ++i) {
-      points[i + nu * j] = s.point(nu - 1 - i, j);
-      weights[i + nu * j] = s.weight(nu - 1 - i, j);
-    }
-  }
-  return NurbsSurface(KnotVector(std::move(reversed), s.knots_u().degree()), s.knots_v(),
-                      std::move(points), std::move(weights));
-}
-
 // Thesis 5.13 with degree 1 in w: C_ij0 = (B_ij, w_ij), C_ij1 = (D_j, weight of D_j).
 NurbsVolume build_volume(const NurbsSurface& s, const Centreline& centreline) {
   const int nu = s.count_u();
@@ -188,7 +166,7 @@ NurbsVolume shrink_to_centreline(const NurbsSurface& surface, int closed_directi
     throw std::invalid_argument(msg.str());
   }
   if (signed_volume < 0.0)
-    volume = build_volume(reverse_u(s), centreline);
+    volume = build_volume(s.reversed_u(), centreline);
   return volume;
 }
 

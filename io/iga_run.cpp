@@ -153,6 +153,7 @@ solver::NewtonSettings newton_settings(const SolverSettings& s, const IgaModel& 
   n.linear.method = s.linear_solver == LinearSolverKind::cholmod ? solver::LinearMethod::Cholesky
                                                                  : solver::LinearMethod::Lu;
   n.linear.lu_fallback = true;
+  n.linear.blas_threads = s.blas_threads;
   const double volume = model.space->reference_volume();
   const double modulus = std::max(model.law->bulk_modulus(), model.law->shear_modulus());
   const double eps = std::numeric_limits<double>::epsilon();

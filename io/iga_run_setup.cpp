@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "geometry/extrusion.hpp"
 #include "geometry/fibre_field.hpp"
 #include "geometry/iges.hpp"
 #include "geometry/refinement.hpp"
@@ -279,7 +280,7 @@ IgaModel build_iga_model(const Scene& scene, int threads) {
   IgaModel model;
   const GeometrySettings& g = scene.geometry;
 
-  // IGES surface -> shrink solid.
+  // IGES surface -> shrink solid or extruded sheet.
   std::vector<geometry::IgesSurface> surfaces = geometry::read_iges_surfaces(g.iges);
   if (g.surface < 0 || g.surface >= static_cast<int>(surfaces.size())) {
     throw std::invalid_argument("[geometry] surface = " + std::to_string(g.surface) + ": " +
@@ -288,21 +289,32 @@ IgaModel build_iga_model(const Scene& scene, int threads) {
                                 std::to_string(surfaces.size() - 1));
   }
   const geometry::NurbsSurface& surface = surfaces[static_cast<std::size_t>(g.surface)].surface;
-  const int closed_direction = g.centreline == Direction::v ? 0 : 1;
-  try {
-    model.unrefined = geometry::shrink_to_centreline(surface, closed_direction);
-  } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(g.iges.string() + ", surface " + std::to_string(g.surface) +
-                                " with centreline = \"" + to_string(g.centreline) +
-                                "\": " + e.what());
-  }
   SceneFrame& frame = model.frame;
-  if (g.centreline == Direction::u) {
-    frame.solid_direction = {geometry::kAlongCentreline, geometry::kAroundCentreline,
-                             geometry::kTowardsCentreline};
+  if (g.construction == Construction::extrude) {
+    try {
+      geometry::Extrusion sheet = geometry::extrude(surface, g.extrusion);
+      model.unrefined = std::move(sheet.volume);
+      frame.reversed[0] = sheet.u_reversed;
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(g.iges.string() + ", surface " + std::to_string(g.surface) +
+                                  " extruded by " + describe_point(g.extrusion) + ": " + e.what());
+    }
+  } else {
+    const int closed_direction = g.centreline == Direction::v ? 0 : 1;
+    try {
+      model.unrefined = geometry::shrink_to_centreline(surface, closed_direction);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(g.iges.string() + ", surface " + std::to_string(g.surface) +
+                                  " with centreline = \"" + to_string(g.centreline) +
+                                  "\": " + e.what());
+    }
+    if (g.centreline == Direction::u) {
+      frame.solid_direction = {geometry::kAlongCentreline, geometry::kAroundCentreline,
+                               geometry::kTowardsCentreline};
+    }
+    frame.reversed[geometry::kAroundCentreline] =
+        around_reversed(surface, closed_direction, model.unrefined);
   }
-  frame.reversed[geometry::kAroundCentreline] =
-      around_reversed(surface, closed_direction, model.unrefined);
   for (int d = 0; d < 3; ++d)
     frame.domain[static_cast<std::size_t>(d)] = model.unrefined.domain(d);
   if (g.extracts())
@@ -333,6 +345,17 @@ IgaModel build_iga_model(const Scene& scene, int threads) {
     add_boundary(model, scene.boundaries[i], static_cast<int>(i));
   }
 
+  iga::Loads loads;
+  for (std::size_t i = 0; i < scene.loads.size(); ++i) {
+    const LoadSettings& l = scene.loads[i];
+    const std::string label = "[[load]] #" + std::to_string(i + 1) + " (" + to_string(l.type) +
+                              ", face " + to_string(l.face) + ")";
+    loads.surface.push_back(
+        {label, frame.solid_side(l.face), [l](const Eigen::Vector3d&, double t) -> Eigen::Vector3d {
+           return l.factor(t) * l.traction;
+         }});
+  }
+
   iga::ProblemOptions options;
   options.threads = threads;
   options.formulation = scene.solver.formulation == Formulation::mixed
@@ -346,7 +369,7 @@ IgaModel build_iga_model(const Scene& scene, int threads) {
   }
   model.problem =
       std::make_unique<iga::Problem>(*model.space, *model.dofs, *model.law, std::move(fibres),
-                                     model.conditions, iga::Loads{}, options);
+                                     model.conditions, std::move(loads), options);
   return model;
 }
 

@@ -74,6 +74,14 @@ Face parse_face(const std::string& key, const std::string& name) {
   return static_cast<Face>(std::find(names.begin(), names.end(), name) - names.begin());
 }
 
+const char* to_string(Construction c) {
+  return c == Construction::shrink ? "shrink" : "extrude";
+}
+
+const char* to_string(LoadType) {
+  return "traction";
+}
+
 const char* to_string(FibreMode m) {
   static const char* names[] = {"isocurve", "constant", "segments", "line"};
   return names[static_cast<int>(m)];
@@ -124,6 +132,8 @@ void GeometrySettings::validate() const {
     throw InvalidSetting("iges", "names no readable file (looked for " + iges.string() + ")");
   }
   check_range("surface", surface, Range::non_negative());
+  if (construction == Construction::extrude)
+    check_vector("extrusion", extrusion, true);
   if (centreline == Direction::w) {
     throw InvalidSetting("centreline", "must be one of u, v (got \"w\")");
   }
@@ -255,6 +265,20 @@ Eigen::Vector3d BoundarySettings::prescribed_displacement(double time) const {
   return u;
 }
 
+void LoadSettings::validate() const {
+  check_vector("traction", traction, false);
+  check_range("start", start, Range::non_negative());
+  check_range("ramp_time", ramp_time, Range::non_negative());
+}
+
+double LoadSettings::factor(double time) const {
+  if (time < start)
+    return 0.0;
+  if (!(ramp_time > 0.0))
+    return 1.0;
+  return std::min(1.0, (time - start) / ramp_time);
+}
+
 void TimeSettings::validate() const {
   check_range("end", end, Range::positive());
   check_range("dt", dt, Range{0.0, end, true, false});
@@ -267,6 +291,7 @@ void SolverSettings::validate() const {
   check_range("tolerance_residual", tolerance_residual, Range{0.0, 1.0, true, true});
   check_range("tolerance_energy", tolerance_energy, Range{0.0, 1.0, true, true});
   check_range("threads", threads, Range::closed(0, 4096));
+  check_range("blas_threads", blas_threads, Range::closed(0, 4096));
 }
 
 const std::vector<std::string>& OutputSettings::field_names() {
@@ -354,6 +379,9 @@ void Scene::validate() const {
   validate_in("fibres", fibres);
   for (std::size_t i = 0; i < boundaries.size(); ++i) {
     validate_in("boundary[" + std::to_string(i) + "]", boundaries[i]);
+  }
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    validate_in("load[" + std::to_string(i) + "]", loads[i]);
   }
   validate_in("time", time);
   validate_in("solver", solver);

@@ -36,11 +36,21 @@ struct RefinementSettings {
   void validate() const;
 };
 
+// How the solid is built from the IGES surface.
+enum class Construction {
+  shrink,   // a closed surface shrunk onto its centreline (thesis 5.13-5.15, geometry/shrink.hpp)
+  extrude,  // a sheet swept along a vector: H = B(u, v) + w d (geometry/extrusion.hpp)
+};
+const char* to_string(Construction c);
+
 // [geometry]: where the solid comes from.
 struct GeometrySettings {
-  std::filesystem::path iges;           // IGES file; a scene gives it relative to the scene file
-  int surface = 0;                      // index of the B-spline surface in the file
-  Direction centreline = Direction::v;  // parametric direction of the surface along the muscle
+  std::filesystem::path iges;  // IGES file; a scene gives it relative to the scene file
+  int surface = 0;             // index of the B-spline surface in the file
+  Construction construction = Construction::shrink;
+  Direction centreline = Direction::v;  // shrink: parametric direction of the surface along the
+                                        // muscle
+  Eigen::Vector3d extrusion = Eigen::Vector3d::UnitZ();  // extrude: the vector d, m
   RefinementSettings refine;
   // extract = { u = [a, b], ... }: the solid restricted to a parameter sub-range per direction,
   // given as fractions of the knot domain in the scene's naming (as probe xi), cut exactly by knot
@@ -116,6 +126,23 @@ struct BoundarySettings {
   Eigen::Vector3d prescribed_displacement(double time) const;
 };
 
+// [[load]]: an external load, dead (fixed in the reference configuration).
+enum class LoadType {
+  traction,  // nominal traction t0 on a face, Pa = N per m^2 of REFERENCE area
+};
+const char* to_string(LoadType t);
+
+struct LoadSettings {
+  Face face = Face::u1;  // a parametric face (loads are integrated over the face's parameters)
+  LoadType type = LoadType::traction;
+  Eigen::Vector3d traction = Eigen::Vector3d::Zero();  // Pa, at full load
+  double start = 0.0;                                  // s, the load is 0 before
+  double ramp_time = 0.0;  // s, linear rise to full load from start; 0: full at start
+  void validate() const;
+  // Load factor in [0, 1] at time t: 0 before start, (t - start) / ramp_time, then 1.
+  double factor(double time) const;
+};
+
 // [time]: quasi-static time stepping with cut-back.
 struct TimeSettings {
   double end = 1.0;             // s
@@ -144,6 +171,8 @@ struct SolverSettings {
   LinearSolverKind linear_solver = LinearSolverKind::cholmod;
   TangentKind tangent = TangentKind::consistent;
   int threads = 0;  // 0: every available core
+  // Threads of the BLAS under CHOLMOD (solver/blas_threads.hpp); 0: the BLAS's own default.
+  int blas_threads = 1;
   void validate() const;
 };
 
@@ -181,6 +210,7 @@ struct Scene {
   MaterialSettings material;
   FibreSettings fibres;
   std::vector<BoundarySettings> boundaries;
+  std::vector<LoadSettings> loads;
   TimeSettings time;
   SolverSettings solver;
   OutputSettings output;

@@ -53,7 +53,16 @@ GeometrySettings read_geometry(SceneTable t, const std::filesystem::path& base) 
   GeometrySettings g;
   g.iges = resolve(base, t.string("iges", required));
   g.surface = t.integer("surface", g.surface, Range::non_negative());
-  g.centreline = parse_direction("centreline", t.choice("centreline", "v", {"u", "v"}));
+  const std::string construction = t.choice("construction", "shrink", {"shrink", "extrude"});
+  forbid_unused(t, "construction", construction,
+                {{"centreline", {"shrink"}}, {"extrusion", {"extrude"}}});
+  if (construction == "shrink") {
+    g.construction = Construction::shrink;
+    g.centreline = parse_direction("centreline", t.choice("centreline", "v", {"u", "v"}));
+  } else {
+    g.construction = Construction::extrude;
+    g.extrusion = to_vector(t.vector3("extrusion", required));
+  }
   if (auto r = t.optional_table("refine")) {
     const Range allowed = Range::non_negative();
     if (auto d = r->optional_integers("degree_elevation", 3, allowed)) {
@@ -208,6 +217,27 @@ BoundarySettings read_boundary(SceneTable t) {
   return b;
 }
 
+LoadSettings read_load(SceneTable t) {
+  LoadSettings l;
+  const toml::node_type face_type = t.type_of("face");
+  if (face_type == toml::node_type::none)
+    t.fail_table("needs 'face': one of " + join(face_names()));
+  if (face_type != toml::node_type::string) {
+    t.fail("face", "must be a face name (" + join(face_names()) +
+                       "): a load is integrated over the parameters of a face, which a plane "
+                       "selection does not have");
+  }
+  l.face = parse_face("face", t.choice("face", required, face_names()));
+  t.choice("type", required, {"traction"});
+  l.type = LoadType::traction;
+  l.traction = to_vector(t.vector3("traction", required));
+  l.start = t.number("start", l.start, Range::non_negative());
+  l.ramp_time = t.number("ramp_time", l.ramp_time, Range::non_negative());
+  t.finish();
+  validate_at(t, l);
+  return l;
+}
+
 TimeSettings read_time(SceneTable t) {
   TimeSettings s;
   s.end = t.number("end", required, Range::positive());
@@ -238,6 +268,7 @@ SolverSettings read_solver(std::optional<SceneTable> t) {
                   ? TangentKind::consistent
                   : TangentKind::frozen_ce;
   s.threads = t->integer("threads", s.threads);
+  s.blas_threads = t->integer("blas_threads", s.blas_threads);
   t->finish();
   validate_at(*t, s);
   return s;
@@ -290,8 +321,8 @@ ProbeSettings read_probe(SceneTable t) {
 Scene scene_from_document(const toml::table& document, const std::filesystem::path& path) {
   SceneTable root(document, path.string());
   // Unknown top-level tables first: a misspelt [materal] explains a "missing [material]".
-  for (const char* key : {"description", "geometry", "material", "fibres", "boundary", "time",
-                          "solver", "output", "probe"}) {
+  for (const char* key : {"description", "geometry", "material", "fibres", "boundary", "load",
+                          "time", "solver", "output", "probe"}) {
     root.allow(key);
   }
   root.finish();
@@ -310,6 +341,9 @@ Scene scene_from_document(const toml::table& document, const std::filesystem::pa
     root.fail_table(
         "the scene needs at least one [[boundary]] entry (a body without supports has no unique "
         "equilibrium)");
+  }
+  for (SceneTable& entry : root.tables("load")) {
+    scene.loads.push_back(read_load(entry));
   }
   scene.time = read_time(root.table("time", required));
   scene.solver = read_solver(root.optional_table("solver"));

@@ -9,7 +9,11 @@
 //   [geometry]
 //   iges = "barrel.igs"          # (required) relative to the scene file
 //   surface = 0                  # index of the B-spline surface in the file
-//   centreline = "v"             # "u" | "v": surface direction along the muscle
+//   construction = "shrink"      # "shrink": a closed surface shrunk onto its centreline;
+//                                # "extrude": a sheet swept along `extrusion`
+//   centreline = "v"             # shrink: "u" | "v", surface direction along the muscle
+//   # extrusion = [0, 0, 0.001]  # extrude (required there): the sweep vector d, m; w = 0 is the
+//                                # surface, w = 1 the surface moved by d
 //   # extract = { u = [0.0, 0.5], v = [0.0, 0.25] }  # sub-range per direction (u, v, w) as
 //   #                            fractions of the domain, 0 <= a < b <= 1, cut exactly before the
 //   #                            refinement; faces, xi and refinement then refer to the piece
@@ -40,6 +44,13 @@
 //   # start = 0.0                # displacement: s
 //   # stop = 2.4                 # displacement: s, position held afterwards (default: never)
 //
+//   [[load]]                     # (any number) dead loads
+//   face = "u1"                  # (required) a face name
+//   type = "traction"            # (required) nominal traction, Pa per m^2 of reference area
+//   traction = [0, 0.05, 0]      # (required) Pa at full load
+//   start = 0.0                  # s, zero before
+//   ramp_time = 1.0              # s, linear rise from start to full load; 0: full at start
+//
 //   [time]
 //   end = 0.2                    # (required) s
 //   dt = 0.005                   # (required) s, <= end
@@ -55,7 +66,8 @@
 //   line_search = true
 //   linear_solver = "cholmod"    # "cholmod" | "umfpack"
 //   tangent = "consistent"       # "consistent" | "frozen_ce"
-//   threads = 0                  # 0: all cores
+//   threads = 0                  # assembly threads, 0: all cores
+//   blas_threads = 1             # threads of the BLAS under CHOLMOD, 0: the BLAS's default
 //
 //   [output]
 //   times = [0.05, 0.1, 0.2]     # s; or every = 0.01; neither: every converged step

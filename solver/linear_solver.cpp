@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "solver/blas_threads.hpp"
 #include "solver/setting_error.hpp"
 #include "solver/umfpack_lu.hpp"
 
@@ -46,6 +47,10 @@ std::string to_string(LinearMethod method) {
 void LinearSolverSettings::validate() const {
   if (method == LinearMethod::None) {
     throw SettingError("method", "must be Cholesky (CHOLMOD) or LU (UMFPACK) (got none)");
+  }
+  if (blas_threads < 0 || blas_threads > 4096) {
+    throw SettingError("blas_threads",
+                       "must be in [0, 4096] (got " + std::to_string(blas_threads) + ")");
   }
 }
 
@@ -193,6 +198,8 @@ struct LinearSolver::Impl {
 
 LinearSolver::LinearSolver(LinearSolverSettings settings) {
   settings.validate();
+  if (settings.blas_threads > 0)
+    set_blas_threads(settings.blas_threads);
   impl_ = std::make_unique<Impl>(settings);
 }
 LinearSolver::~LinearSolver() = default;

@@ -28,6 +28,10 @@ struct LinearSolverSettings {
   // With Cholesky: when it fails (not positive definite), factorise the same matrix by LU.
   bool lu_fallback = true;
   CholeskyOrdering ordering = CholeskyOrdering::Default;
+  // Threads of the BLAS under CHOLMOD (blas_threads.hpp), set when the solver is made; 0 leaves
+  // the BLAS as it is. One by default: for the sizes of these models (< 1e5 DOFs) threads gain
+  // little and OpenBLAS's spinning threads cost up to 10x on a busy machine.
+  int blas_threads = 1;
 
   // Throws SettingError ("'method' must be Cholesky or Lu ...").
   void validate() const;

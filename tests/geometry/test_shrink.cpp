@@ -26,22 +26,6 @@ NurbsSurface translated(const NurbsSurface& s, const Eigen::Vector3d& shift) {
   return NurbsSurface(s.knots_u(), s.knots_v(), points, s.weights());
 }
 
-NurbsSurface reversed_u(const NurbsSurface& s) {
-  std::vector<double> knots;
-  const auto& u = s.knots_u().knots();
-  for (auto it = u.rbegin(); it != u.rend(); ++it)
-    knots.push_back(1.0 - *it);
-  std::vector<Eigen::Vector3d> points;
-  std::vector<double> weights;
-  for (int j = 0; j < s.count_v(); ++j) {
-    for (int i = s.count_u() - 1; i >= 0; --i) {
-      points.push_back(s.point(i, j));
-      weights.push_back(s.weight(i, j));
-    }
-  }
-  return NurbsSurface(KnotVector(knots, s.knots_u().degree()), s.knots_v(), points, weights);
-}
-
 class ShrinkCircle : public ::testing::TestWithParam<CircleForm> {};
 
 // SPEC pitfall: the mean of the distinct homogeneous points of a rational circle is its exact
@@ -164,7 +148,7 @@ TEST(Shrink, OrientationGivesPositiveJacobianBothWays) {
   for (const ExampleShape& shape : example_shapes()) {
     bool kept[2] = {false, false};
     for (const bool reverse : {false, true}) {
-      const NurbsSurface s = reverse ? reversed_u(shape.surface) : shape.surface;
+      const NurbsSurface s = reverse ? shape.surface.reversed_u() : shape.surface;
       const NurbsVolume solid = shrink_to_centreline(s, 0);
       const JacobianRange range = jacobian_range(solid, 4);
       EXPECT_EQ(range.non_positive, 0) << shape.name << (reverse ? " reversed" : "");

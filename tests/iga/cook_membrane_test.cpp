@@ -81,37 +81,27 @@ CookResult cook(int p, int n, Formulation formulation, int pressure_degree = 0) 
   return r;
 }
 
-TEST(SlowCookMembrane, MixedFormulationMatchesReferenceDisplacementFormulationLocks) {
-  std::printf("Cook's membrane, p = 2, n x n x 1 elements, corner UY (reference %.4f):\n",
-              kReference);
-  double mixed_16 = 0.0, displacement_16 = 0.0;
-  for (int n : {4, 8, 16}) {
-    const CookResult m = cook(2, n, Formulation::mixed);
-    const CookResult d = cook(2, n, Formulation::displacement);
-    std::printf(
-        "  n = %2d: mixed %.4f (%+.2f %%; %d steps, %d cuts, %d Newton iterations), "
-        "displacement %.4f (%+.2f %%; %d, %d, %d)\n",
-        n, m.uy, 100 * (m.uy / kReference - 1), m.steps, m.cuts, m.newton_iterations, d.uy,
-        100 * (d.uy / kReference - 1), d.steps, d.cuts, d.newton_iterations);
-    std::fflush(stdout);
-    if (n == 16) {
-      mixed_16 = m.uy;
-      displacement_16 = d.uy;
-    }
-  }
-  EXPECT_NEAR(mixed_16, kReference, 0.01 * kReference);
-  EXPECT_LT(displacement_16, 0.85 * kReference);
-  // Other choices, for the record: p = 3 with mean dilatation (measured +4.9 % at n = 8: the
-  // constant pressure converges at O(h) from above, like p = 2), and p = 2 with element-wise
-  // linear p~, J~ (pressure degree 1: 8 constraints per element over-constrain the smooth spline
-  // space, pressure_space.hpp; measured -11 % at n = 8).
+// The benchmark itself (n = 4, 8, 16 against the reference) runs through the committed scene in
+// tests/app/test_cook_scene.cpp. Here, on the iga::Problem directly: the formulation choices that
+// the scene does not expose, at n = 8 (measured: mixed mean dilatation p = 2 4.7903 (+1.9 %),
+// displacement 2.4782 (-47 %), p = 3 mean dilatation 4.9297 (+4.9 %: the constant pressure
+// converges at O(h) from above, like p = 2), p = 2 with element-wise linear p~, J~ 4.1640 (-11 %:
+// 8 constraints per element over-constrain the smooth spline space, pressure_space.hpp)).
+TEST(SlowCookMembrane, FormulationChoicesAtEightByEight) {
+  const CookResult mixed = cook(2, 8, Formulation::mixed);
+  const CookResult displacement = cook(2, 8, Formulation::displacement);
   const CookResult p3 = cook(3, 8, Formulation::mixed);
   const CookResult k1 = cook(2, 8, Formulation::mixed, 1);
   std::printf(
-      "  p = 3, n = 8, mean dilatation: %.4f (%+.2f %%); p = 2, n = 8, pressure degree 1: "
-      "%.4f (%+.2f %%)\n",
-      p3.uy, 100 * (p3.uy / kReference - 1), k1.uy, 100 * (k1.uy / kReference - 1));
-  EXPECT_GT(p3.uy, displacement_16);  // no locking with mean dilatation at p = 3 either
+      "Cook's membrane n = 8 (reference %.4f): p = 2 mixed %.4f (%+.2f %%), displacement %.4f "
+      "(%+.2f %%); p = 3 mixed %.4f (%+.2f %%); p = 2, pressure degree 1: %.4f (%+.2f %%)\n",
+      kReference, mixed.uy, 100 * (mixed.uy / kReference - 1), displacement.uy,
+      100 * (displacement.uy / kReference - 1), p3.uy, 100 * (p3.uy / kReference - 1), k1.uy,
+      100 * (k1.uy / kReference - 1));
+  EXPECT_NEAR(mixed.uy, kReference, 0.03 * kReference);
+  EXPECT_LT(displacement.uy, 0.6 * kReference);       // locked
+  EXPECT_NEAR(p3.uy, kReference, 0.07 * kReference);  // no locking with mean dilatation at p = 3
+  EXPECT_GT(k1.uy, displacement.uy);
 }
 
 }  // namespace

@@ -274,7 +274,7 @@ TEST_F(SceneLoader, TypoInATableIsReportedBeforeTheKeyItHides) {
   EXPECT_EQ(key.message(),
             "unknown key 'linear_solvr' in [solver]; did you mean 'linear_solver'? valid keys: "
             "formulation, newton_max_iterations, tolerance_residual, tolerance_energy, "
-            "line_search, linear_solver, tangent, threads");
+            "line_search, linear_solver, tangent, threads, blas_threads");
 }
 
 TEST_F(SceneLoader, MaterialModelAndParametersAreCheckedByTheFactory) {
@@ -394,6 +394,58 @@ TEST_F(SceneLoader, BoundaryConditionsAreChecked) {
                 ": the scene needs at least one [[boundary]] entry (a body without supports has "
                 "no unique equilibrium)")
                    .c_str());
+}
+
+// [geometry] construction = "extrude" and [[load]] tables: values, defaults, the load factor, and
+// the errors at their lines.
+TEST_F(SceneLoader, ExtrusionAndLoads) {
+  std::string text = minimal(
+      "[[load]]\nface = \"u1\"\ntype = \"traction\"\ntraction = [0, 0.05, 0]\nramp_time = 2\n"
+      "start = 1\n");
+  text.replace(text.find("iges = \"shape.igs\"\n") + 19, 0,
+               "construction = \"extrude\"\nextrusion = [0, 0, 0.5]\n");
+  const Scene scene = parse(text);
+  EXPECT_EQ(scene.geometry.construction, Construction::extrude);
+  EXPECT_EQ(scene.geometry.extrusion, Eigen::Vector3d(0, 0, 0.5));
+  ASSERT_EQ(scene.loads.size(), 1u);
+  const LoadSettings& load = scene.loads[0];
+  EXPECT_EQ(load.face, Face::u1);
+  EXPECT_EQ(load.traction, Eigen::Vector3d(0, 0.05, 0));
+  EXPECT_EQ(load.factor(0.5), 0.0);
+  EXPECT_DOUBLE_EQ(load.factor(2.0), 0.5);
+  EXPECT_EQ(load.factor(7.0), 1.0);
+  EXPECT_EQ(parse(minimal()).geometry.construction, Construction::shrink);
+  EXPECT_TRUE(parse(minimal()).loads.empty());
+
+  std::string centreline = text;
+  centreline.replace(centreline.find("extrusion ="), 0, "centreline = \"v\"\n");
+  const SceneError c = error(centreline);
+  EXPECT_EQ(c.line(), line_containing(centreline, "centreline ="));
+  EXPECT_EQ(c.message(),
+            "'centreline' in [geometry] is used only with construction = \"shrink\" (here "
+            "construction = \"extrude\")");
+  std::string no_vector = text;
+  no_vector.erase(no_vector.find("extrusion = [0, 0, 0.5]\n"), 24);
+  EXPECT_EQ(error(no_vector).message(), "missing required key 'extrusion' in [geometry]");
+  std::string zero = text;
+  zero.replace(zero.find("[0, 0, 0.5]"), 11, "[0, 0, 0]");
+  const SceneError z = error(zero);
+  EXPECT_EQ(z.line(), line_containing(zero, "extrusion ="));
+  EXPECT_EQ(z.message(), "'extrusion' in [geometry] must not be the zero vector");
+
+  const std::string plane = minimal(
+      "[[load]]\nface = { point = [0, 0, 0], normal = [1, 0, 0] }\ntype = \"traction\"\n"
+      "traction = [1, 0, 0]\n");
+  const SceneError p = error(plane);
+  EXPECT_EQ(p.line(), line_containing(plane, "face = {"));
+  EXPECT_NE(p.message().find("must be a face name"), std::string::npos) << p.message();
+  const std::string kind =
+      minimal("[[load]]\nface = \"u1\"\ntype = \"pressure\"\ntraction = [1, 0, 0]\n");
+  EXPECT_EQ(error(kind).message(),
+            "'type' in [[load]] #1 must be one of traction (got \"pressure\")");
+  const std::string ramp = minimal(
+      "[[load]]\nface = \"u1\"\ntype = \"traction\"\ntraction = [1, 0, 0]\nramp_time = -1\n");
+  EXPECT_EQ(error(ramp).line(), line_containing(ramp, "ramp_time ="));
 }
 
 TEST_F(SceneLoader, TimeAndOutputConsistency) {

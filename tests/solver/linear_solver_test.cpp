@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "solver/blas_threads.hpp"
 #include "solver/setting_error.hpp"
 #include "tests/solver/elasticity_fixture.hpp"
 
@@ -219,6 +220,23 @@ TEST(LinearSolver, NonSymmetricMatrixIsSolvedByLu) {
   EXPECT_LE(relative_residual(a, MatrixStorage::Full, x, b), 1e-12);
   EXPECT_EQ(solver.statistics().symbolic_analyses, 0);
   EXPECT_EQ(solver.statistics().lu_symbolic_analyses, 1);
+}
+
+// The BLAS under CHOLMOD is Debian's OpenBLAS here (install-deps.sh): its thread count can be
+// set and read back, and a solver made with blas_threads = 1 leaves it at one.
+TEST(LinearSolver, BlasThreadsAreSetWhenTheBlasIsOpenBlas) {
+  if (blas_threads() == 0)
+    GTEST_SKIP() << "the loaded BLAS is not OpenBLAS: nothing to set";
+  ASSERT_TRUE(set_blas_threads(2));
+  EXPECT_EQ(blas_threads(), 2);
+  LinearSolverSettings settings;
+  settings.blas_threads = 1;
+  const LinearSolver solver(settings);
+  EXPECT_EQ(blas_threads(), 1);
+  EXPECT_FALSE(set_blas_threads(0));
+  EXPECT_EQ(blas_threads(), 1);
+  settings.blas_threads = -1;
+  EXPECT_THROW(LinearSolver{settings}, SettingError);
 }
 
 TEST(LinearSolver, BadInputIsReportedClearly) {
