@@ -22,10 +22,13 @@ import sys
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
-# knot_insertion per direction (u around, v along, w radial for the barrel); degree elevation is the
-# scene's own.
-REFINEMENTS = [[0, 1, 0], [0, 3, 1], [1, 3, 1], [3, 5, 2], [3, 7, 3]]
-QUICK = [[0, 1, 0], [0, 3, 1]]
+# knot_insertion per direction and scene (barrel: u around, v along, w radial; Cook: n - 1 new
+# knots in u and v for n x n x 1 elements); degree elevation is the scene's own.
+REFINEMENTS = {
+    "barrel": [[0, 1, 0], [0, 3, 1], [1, 3, 1], [3, 5, 2], [3, 7, 3]],
+    "cook": [[3, 3, 0], [7, 7, 0], [15, 15, 0], [31, 31, 0], [47, 47, 0]],
+}
+QUICK = {"barrel": [[0, 1, 0], [0, 3, 1]], "cook": [[3, 3, 0], [7, 7, 0]]}
 
 COLUMNS = ["scene", "knot_insertion", "status", "elements", "dofs", "free_dofs", "steps",
            "newton_iterations", "newton_iterations_per_step", "setup_s", "assembly_s",
@@ -107,7 +110,8 @@ def main():
     os.makedirs(scene_dir, exist_ok=True)
     rows = []
     for label, scene in scenes:
-        for refine in (QUICK if args.quick else REFINEMENTS):
+        family = label.split("-")[0]
+        for refine in (QUICK if args.quick else REFINEMENTS)[family]:
             path = variant(scene, refine, scene_dir)
             run_dir = os.path.join(args.out, "runs", os.path.splitext(os.path.basename(path))[0])
             result = subprocess.run([args.exe, "run", path, "--out", run_dir, "--threads",
@@ -130,6 +134,35 @@ def main():
     with open(csv_path) as f:
         sys.stdout.write(f.read())
     print("run_timing: written %s" % csv_path, file=sys.stderr)
+    plot(rows, os.path.join(args.out, "timing.png"))
+
+
+def plot(rows, path):
+    """Seconds per phase against DOFs, one panel per scene (log-log). Needs matplotlib."""
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("run_timing: no matplotlib (use /usr/bin/python3): %s not drawn" % path,
+              file=sys.stderr)
+        return
+    scenes = sorted({r["scene"] for r in rows})
+    fig, axes = plt.subplots(1, len(scenes), figsize=(5.5 * len(scenes), 4.2), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        mine = sorted((r for r in rows if r["scene"] == scene), key=lambda r: r["dofs"])
+        dofs = [r["dofs"] for r in mine]
+        for phase in ["assembly_s", "factorisation_s", "solve_s", "output_s", "total_s"]:
+            ax.loglog(dofs, [max(float(r[phase]), 1e-4) for r in mine], "o-",
+                      label=phase[:-2], lw=2.0 if phase == "total_s" else 1.0)
+        ax.set_xlabel("DOFs")
+        ax.set_ylabel("wall seconds (whole run)")
+        ax.set_title(scene)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    print("run_timing: drew %s" % path, file=sys.stderr)
 
 
 if __name__ == "__main__":
