@@ -1,119 +1,24 @@
 #include "io/hdf5_xdmf_writer.hpp"
 
-#include <hdf5.h>
-
 #include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
 #include "io/atomic_file.hpp"
+#include "io/hdf5_support.hpp"
 #include "io/setting_check.hpp"
 
 namespace isomuscle::io {
 
 namespace {
 
-// ---- HDF5 C API with errors as exceptions ----------------------------------------------------
-
-// Silences HDF5's automatic error printing while alive; failures are reported by exceptions.
-class QuietHdf5 {
- public:
-  QuietHdf5() {
-    H5Eget_auto2(H5E_DEFAULT, &function_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietHdf5() { H5Eset_auto2(H5E_DEFAULT, function_, data_); }
-  QuietHdf5(const QuietHdf5&) = delete;
-  QuietHdf5& operator=(const QuietHdf5&) = delete;
-
- private:
-  H5E_auto2_t function_ = nullptr;
-  void* data_ = nullptr;
-};
-
-// The innermost message of HDF5's error stack ("unable to open file"), for exceptions.
-std::string hdf5_reason() {
-  std::string reason;
-  H5Ewalk2(
-      H5E_DEFAULT, H5E_WALK_DOWNWARD,
-      [](unsigned, const H5E_error2_t* error, void* data) -> herr_t {
-        auto* text = static_cast<std::string*>(data);
-        if (text->empty() && error->desc != nullptr)
-          *text = error->desc;
-        return 0;
-      },
-      &reason);
-  H5Eclear2(H5E_DEFAULT);
-  return reason.empty() ? "no reason given by HDF5" : reason;
-}
-
-// An HDF5 identifier closed by its close function when it goes out of scope.
-class Handle {
- public:
-  Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0)
-      throw std::runtime_error(what + " failed: " + hdf5_reason());
-  }
-  ~Handle() {
-    if (id_ >= 0)
-      close_(id_);
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  hid_t get() const { return id_; }
-  // Closes now and reports a failure (closing the file flushes it).
-  void close(const std::string& what) {
-    const herr_t status = close_(id_);
-    id_ = -1;
-    if (status < 0)
-      throw std::runtime_error(what + " failed: " + hdf5_reason());
-  }
-
- private:
-  hid_t id_;
-  herr_t (*close_)(hid_t);
-};
-
-void check(herr_t status, const std::string& what) {
-  if (status < 0)
-    throw std::runtime_error(what + " failed: " + hdf5_reason());
-}
-
-Handle create_group(hid_t parent, const std::string& name, const std::string& file) {
-  return Handle(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-                "creating group " + name + " in " + file);
-}
-
-// A rows x columns dataset (1-D when columns == 1 and one_dimensional) written from row-major
-// data of the given memory type.
-void write_dataset(hid_t group, const std::string& name, hsize_t rows, hsize_t columns,
-                   bool one_dimensional, hid_t file_type, hid_t memory_type, const void* data,
-                   const std::string& where) {
-  const hsize_t dims[2] = {rows, columns};
-  Handle space(H5Screate_simple(one_dimensional ? 1 : 2, dims, nullptr), H5Sclose,
-               "creating the dataspace of " + where);
-  Handle set(H5Dcreate2(group, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
-                        H5P_DEFAULT),
-             H5Dclose, "creating dataset " + where);
-  check(H5Dwrite(set.get(), memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
-        "writing dataset " + where);
-}
-
-void write_scalar_attribute(hid_t object, const char* name, hid_t file_type, hid_t memory_type,
-                            const void* value, const std::string& where) {
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose, "creating a scalar dataspace for " + where);
-  Handle attribute(H5Acreate2(object, name, file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
-                   H5Aclose, "creating attribute '" + std::string(name) + "' of " + where);
-  check(H5Awrite(attribute.get(), memory_type, value),
-        "writing attribute '" + std::string(name) + "' of " + where);
-}
-
-std::string numbered(const char* prefix, std::size_t index) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%s_%06zu", prefix, index);
-  return buffer;
-}
+using hdf5::create_group;
+using hdf5::Handle;
+using hdf5::numbered;
+using hdf5::write_dataset;
+using hdf5::write_scalar_attribute;
+using QuietHdf5 = hdf5::Quiet;
 
 std::string xml_escape(const std::string& text) {
   std::string out;

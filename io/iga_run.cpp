@@ -14,6 +14,7 @@
 #include "io/iga_run_fields.hpp"
 #include "io/iga_run_probes.hpp"
 #include "io/iga_run_setup.hpp"
+#include "io/solution_file.hpp"
 #include "isomuscle/version.hpp"
 #include "solver/time_stepper.hpp"
 
@@ -189,6 +190,17 @@ double max_displacement(const iga::Problem& problem, int samples) {
   return m;
 }
 
+// The control-point displacements of the committed state (solution_file.hpp): merged control
+// points repeat their node's value.
+DisplacementRows control_displacements(const iga::Problem& problem) {
+  const iga::DofMap& dofs = problem.dofs();
+  const Eigen::VectorXd& u = problem.committed_displacement();
+  DisplacementRows rows(dofs.num_control_points(), 3);
+  for (int a = 0; a < dofs.num_control_points(); ++a)
+    rows.row(a) = u.segment<3>(3 * dofs.node(a)).transpose();
+  return rows;
+}
+
 void copy_scene(const Scene& scene, const fs::path& out_dir) {
   std::error_code ec;
   if (!scene.file.empty() && fs::is_regular_file(scene.file, ec) &&
@@ -241,6 +253,7 @@ RunResult run_iga(const Scene& scene, const RunOptions& options) {
   IgaModel model;
   std::unique_ptr<IgaProbes> probes;
   std::unique_ptr<IgaFieldOutput> fields;
+  std::unique_ptr<SolutionWriter> solution;
   std::unique_ptr<CsvWriter> probe_csv, newton_csv;
   const std::vector<double> out_times = output_times(scene.output, scene.time.end);
   try {
@@ -252,6 +265,8 @@ RunResult run_iga(const Scene& scene, const RunOptions& options) {
           std::make_unique<IgaFieldOutput>(options.out_dir / "fields.xdmf", scene.output.fields,
                                            scene.output.samples_per_element, model.fibre_spec);
     }
+    solution = std::make_unique<SolutionWriter>(options.out_dir / "solution.h5", model.unrefined,
+                                                model.space->volume());
     std::vector<std::string> columns{"time", "step", "dt", "newton_iterations"};
     columns.insert(columns.end(), probes->columns().begin(), probes->columns().end());
     probe_csv = std::make_unique<CsvWriter>(options.out_dir / "probes.csv", columns);
@@ -336,8 +351,11 @@ RunResult run_iga(const Scene& scene, const RunOptions& options) {
       row.insert(row.end(), probe_row.begin(), probe_row.end());
       probe_csv->write_row(row);
       last_probes = probe_row;
-      if (fields && (every_step || r.output_time))
-        fields->write(problem);
+      if (every_step || r.output_time) {
+        if (fields)
+          fields->write(problem);
+        solution->write_step(problem.committed_time(), control_displacements(problem));
+      }
       if (options.progress) {
         const solver::NewtonStatistics& ns = stepper->newton().statistics();
         options.progress(RunProgress{steps, r.time, scene.time.end, r.dt, r.newton_iterations,
@@ -389,10 +407,15 @@ RunResult run_iga(const Scene& scene, const RunOptions& options) {
   s.extra["time"] = Json{{"end", scene.time.end}, {"reached", result.time_reached}};
   s.extra["outputs"] = Json{{"fields", fields ? Json("fields.xdmf") : Json(nullptr)},
                             {"field_steps", fields ? fields->writer().steps() : 0},
+                            {"solution", "solution.h5"},
                             {"probes", "probes.csv"},
                             {"newton_log", "newton.csv"}};
   try {
     ScopedSeconds timer(wall.output);
+    // The last converged state is always in solution.h5 (for comparisons), also when it is not an
+    // output time (a failed run).
+    if (steps > 0 && (solution->steps() == 0 || solution->last_time() < problem.committed_time()))
+      solution->write_step(problem.committed_time(), control_displacements(problem));
     s.volume_final_m3 = problem.current_volume(problem.committed_displacement());
     s.max_displacement_m = max_displacement(problem, scene.output.samples_per_element);
   } catch (const std::exception& e) {

@@ -14,6 +14,9 @@
 //   summary.json   status "converged" | "failed" (+ reason), sizes, Newton statistics, step cuts,
 //                  linear solver statistics, wall seconds per phase, volumes, max |u|, probes
 //   fields.xdmf    ParaView index of fields.h5 (deformed tessellation per output time)
+//   solution.h5    the geometry, the refined solid and its control-point displacements at each
+//                  output time and at the last converged one (solution_file.hpp): what
+//                  `isomuscle compare` evaluates
 //   probes.csv     time, step, dt, newton_iterations, then one column per probe value
 //   newton.csv     step, time, dt, iteration, initial_residual_norm, residual_norm, ... per Newton
 //                  iteration of every converged step (quadratic convergence can be read off it)

@@ -163,7 +163,9 @@ Eigen::Vector3d face_plane_normal(const geometry::NurbsVolume& volume, std::span
 
 void add_boundary(IgaModel& model, const BoundarySettings& b, int index) {
   const std::string where = b.where.face ? std::string("face ") + to_string(*b.where.face)
-                                         : "plane through " + describe_point(b.where.plane->point);
+                            : b.where.plane
+                                ? "plane through " + describe_point(b.where.plane->point)
+                                : "at " + describe_point(b.where.point->point);
   const std::string label =
       "[[boundary]] #" + std::to_string(index + 1) + " (" + to_string(b.type) + ", " + where + ")";
   std::vector<int> nodes = selected_nodes(model, b.where, label);
@@ -179,6 +181,11 @@ void add_boundary(IgaModel& model, const BoundarySettings& b, int index) {
       break;
     case BoundaryType::symmetry: {
       Eigen::Vector3d normal;
+      if (b.where.point) {
+        throw std::invalid_argument(label +
+                                    ": a symmetry condition needs a face or a plane, "
+                                    "not a point");
+      }
       if (b.where.plane) {
         normal = b.where.plane->normal.normalized();
       } else {
@@ -261,6 +268,19 @@ std::vector<int> selected_nodes(const IgaModel& model, const FaceSelector& where
   std::vector<int> cps;
   if (where.face) {
     cps = iga::side_control_points(volume, model.frame.solid_side(*where.face));
+  } else if (where.point) {
+    const PointSelector& p = *where.point;
+    for (int i = 0; i < volume.num_control_points(); ++i) {
+      if ((volume.points()[i] - p.point).norm() <= p.tolerance)
+        cps.push_back(i);
+    }
+    if (cps.empty()) {
+      throw std::invalid_argument(what + ": no control point lies within " +
+                                  format_number(p.tolerance) + " m of " + describe_point(p.point) +
+                                  "; the point must be a control point of the refined solid "
+                                  "(isomuscle geometry solid --json lists them), or raise "
+                                  "'tolerance'");
+    }
   } else {
     const PlaneSelector& p = *where.plane;
     cps = iga::plane_control_points(volume, p.point, p.normal, p.tolerance);

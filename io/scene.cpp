@@ -214,13 +214,21 @@ void PlaneSelector::validate() const {
   check_range("tolerance", tolerance, Range::positive());
 }
 
+void PointSelector::validate() const {
+  check_vector("at", point, false);
+  check_range("tolerance", tolerance, Range::positive());
+}
+
 void FaceSelector::validate() const {
-  if (face.has_value() == plane.has_value()) {
+  if (int(face.has_value()) + int(plane.has_value()) + int(point.has_value()) != 1) {
     throw InvalidSetting("face", "must be either a face name (" + join(face_names()) +
-                                     ") or a plane { point, normal, tolerance }");
+                                     ") or a plane { point, normal, tolerance }, or (for a "
+                                     "boundary condition) a point 'at' instead");
   }
   if (plane)
     plane->validate();
+  if (point)
+    point->validate();
 }
 
 void BoundarySettings::validate() const {
@@ -232,8 +240,11 @@ void BoundarySettings::validate() const {
                                                  "\"displacement\" (type is \"") +
                                          to_string(type) + "\")");
   }
-  if (type == BoundaryType::symmetry)
+  if (type == BoundaryType::symmetry) {
+    if (where.point)
+      throw InvalidSetting("at", "cannot carry a symmetry condition: it needs a face or a plane");
     return;
+  }
   if (!components[0] && !components[1] && !components[2]) {
     throw InvalidSetting("components", "must constrain at least one of x, y, z");
   }

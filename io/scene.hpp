@@ -99,9 +99,18 @@ struct PlaneSelector {
   void validate() const;
 };
 
+// The control points within tolerance of one point (a few point constraints that remove the
+// rigid-body modes of a body otherwise free, thesis-style "nodal" supports).
+struct PointSelector {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // m
+  double tolerance = 1e-6;                          // m
+  void validate() const;
+};
+
 struct FaceSelector {
-  std::optional<Face> face;  // exactly one of face and plane
+  std::optional<Face> face;  // exactly one of face, plane and point
   std::optional<PlaneSelector> plane;
+  std::optional<PointSelector> point;  // [[boundary]] only (at = [x, y, z])
   void validate() const;
 };
 

@@ -184,7 +184,16 @@ std::array<bool, 3> read_components(SceneTable& t) {
 
 BoundarySettings read_boundary(SceneTable t) {
   BoundarySettings b;
-  b.where = read_face(t);
+  if (t.type_of("at") != toml::node_type::none) {
+    if (t.type_of("face") != toml::node_type::none)
+      t.fail("at", "and 'face' exclude each other: a condition acts on a face or at a point");
+    PointSelector p;
+    p.point = to_vector(t.vector3("at", required));
+    p.tolerance = t.number("tolerance", p.tolerance, Range::positive());
+    b.where.point = p;
+  } else {
+    b.where = read_face(t);
+  }
   const std::string type = t.choice("type", required, {"fixed", "displacement", "symmetry"});
   forbid_unused(t, "type", type,
                 {{"components", {"fixed", "displacement"}},

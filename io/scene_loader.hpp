@@ -37,6 +37,8 @@
 //   [[boundary]]                 # (at least one)
 //   face = "v0"                  # "u0" | "u1" | "v0" | "v1" | "w0" | "w1", or a plane:
 //                                # { point = [x, y, z], normal = [x, y, z], tolerance = 1e-6 }
+//   # at = [0.017, 0, 0]         # instead of face: the control points within `tolerance`
+//   # tolerance = 1e-6           #   (m) of a point, e.g. to remove rigid-body modes
 //   type = "fixed"               # (required) "fixed" | "displacement" | "symmetry"
 //   components = ["x", "y", "z"] # fixed, displacement: constrained components
 //   # velocity = [0, 0, 0.005]   # displacement: m/s from start to stop

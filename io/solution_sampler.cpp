@@ -1,0 +1,38 @@
+#include "io/solution_sampler.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace isomuscle::io {
+
+SolutionSampler::SolutionSampler(const StoredSolution& solution) : solution_(solution) {
+  if (!solution_.iga)
+    throw std::invalid_argument(solution_.path.string() + ": no IGA space to evaluate");
+  inverter_ = std::make_unique<geometry::PointInverter>(*solution_.iga);
+}
+
+// u(xi) = sum_a R_a(xi) u_a over the functions non-zero at xi.
+Eigen::Vector3d SolutionSampler::at_parameter(const Eigen::Vector3d& xi, std::size_t step) const {
+  if (step >= solution_.displacement.size()) {
+    throw std::out_of_range(solution_.path.string() + ": step " + std::to_string(step) +
+                            " does not exist (" + std::to_string(solution_.displacement.size()) +
+                            " steps)");
+  }
+  geometry::VolumeBasis basis;
+  solution_.iga->evaluate_basis(xi, basis);
+  const DisplacementRows& u = solution_.displacement[step];
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (std::size_t a = 0; a < basis.index.size(); ++a)
+    sum += basis.value[a] * u.row(basis.index[a]).transpose();
+  return sum;
+}
+
+std::optional<Eigen::Vector3d> SolutionSampler::at_point(const Eigen::Vector3d& X,
+                                                         std::size_t step) const {
+  const geometry::InversionResult r = inverter_->invert(X);
+  if (!r.inside)
+    return std::nullopt;
+  return at_parameter(r.xi, step);
+}
+
+}  // namespace isomuscle::io
