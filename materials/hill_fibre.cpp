@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "materials/series_element_update.hpp"
 
@@ -17,6 +18,8 @@ void HillFibre::initial_history(std::span<double> history) const {
   history[kLambdaM] = 1.0;
   history[kDeltaLambdaM] = 0.0;
   history[kLambdaF] = 1.0;
+  history[kSeeRate] = 0.0;
+  history[kFibreRate] = 0.0;
 }
 
 // Thesis 3.40–3.41 (5.37 with A = 4); Pa.
@@ -32,25 +35,59 @@ double HillFibre::series_stress(std::span<const double> history) const {
   return p_.beta * std::expm1(p_.alpha * (history[kLambdaS] - 1.0));
 }
 
-// Number of substeps (header): m = ceil(α min(|Δλs_s|, v_max Δt/k) / substep_see_strain) from the
-// committed state; dimensionless.
+namespace {
+
+// y = Δλm / (Δt v_max) at which f_v = f (3.29 / 5.39 inverted; f_v is a Möbius function of y on
+// each branch): shortening f = (1 + y)/(1 - k_c y), lengthening f = d - (d - 1)(1 - y)/(1 + k_c
+// k_e y). NaN beyond the eccentric plateau (f >= d: no finite velocity).
+double inverse_force_velocity(double f, double k_c, double k_e, double d) {
+  if (f <= 1.0)
+    return (std::max(f, 0.0) - 1.0) / (1.0 + std::max(f, 0.0) * k_c);
+  if (f >= d)
+    return std::numeric_limits<double>::quiet_NaN();
+  return (f - 1.0) / ((d - f) * k_c * k_e + d - 1.0);
+}
+
+}  // namespace
+
+// Number of substeps (header): m = ceil(α E / substep_see_strain) from the committed state, with E
+// the a-priori bound or the estimate; dimensionless.
 int HillFibre::substep_count(std::span<const double> history, double time, double dt) const {
   if (p_.explicit_lag || !(dt > 0.0))
     return 1;
   if (p_.substeps > 0)
     return p_.substeps;
-  const double ft = std::max(p_.activation(time), p_.activation(time - dt));
+  const double ft_now = p_.activation(time), ft_before = p_.activation(time - dt);
+  const double ft = std::max(ft_now, ft_before);
   const double fl = force_length(history[kLambdaF], p_.lambda_opt);
   if (!(ft > 0.0) || !(fl > 0.0))
     return 1;  // inactive over the whole step (f_λ at the committed stretch)
-  // Δλs_s: σ_SEE = σ0 f_t(t + Δt) f_λ(^tλ̄f) (3.23 inverted). The a-priori bound is preferred to
-  // an explicit-Euler estimate of Δλs (f_v inverted at ^tσ_SEE / s): that one is cheaper (lu2010
-  // isometric: 1.7 instead of 3.5 substeps per step on average) but misses the start of the
-  // deactivation and of the shortening, where the curves then differ by 0.6 % of the peak.
-  const double s = p_.sigma0 * p_.activation(time) * fl;
+  // Δλs_s: σ_SEE = σ0 f_t(t + Δt) f_λ(^tλ̄f) (3.23 inverted). The bound alone was the first rule:
+  // the explicit-Euler estimate alone misses the start of the deactivation and of the shortening,
+  // where the curves then differ by 0.6 % of the peak; E_see and E_act cover those.
+  const double s = p_.sigma0 * ft_now * fl;
   const double dls_s = std::log1p(s / p_.beta) / p_.alpha - (history[kLambdaS] - 1.0);
-  const double bound = p_.alpha * std::min(std::abs(dls_s), dt * p_.v_max / p_.k);
-  const double m = std::ceil(bound / p_.substep_see_strain);
+  const double bound = std::min(std::abs(dls_s), dt * p_.v_max / p_.k);
+  double E = bound;
+  if (p_.substep_rule == SubstepRule::estimate) {
+    // E_act: the SEE follows s = σ0 f_t f_λ; a switch from or to zero is a front (the bound).
+    double e_act = 0.0;
+    if (ft_now != ft_before)
+      e_act = ft_now > 0.0 && ft_before > 0.0 ? std::abs(std::log(ft_now / ft_before)) / p_.alpha
+                                              : bound;
+    // E_ee: the CE velocity the committed SEE stress asks for (3.25 with σ_CE = σ_SEE), the fibre
+    // at its last rate (D.8).
+    double e_ee = bound;
+    if (s > 0.0) {
+      const double k_c = p_.a_v > 0.0 ? p_.sigma0 * fl / p_.a_v : p_.k_c;
+      const double y = inverse_force_velocity(series_stress(history) / s, k_c, p_.k_e, p_.d);
+      if (std::isfinite(y))
+        e_ee = std::abs(((1.0 + p_.k) * history[kFibreRate] * dt - y * dt * p_.v_max) / p_.k);
+    }
+    const double e_see = std::abs(history[kSeeRate]) * dt;
+    E = std::min(bound, std::max({e_ee, e_see, e_act}));
+  }
+  const double m = std::ceil(p_.alpha * E / p_.substep_see_strain);
   if (!(m > 1.0))
     return 1;
   return m < p_.max_substeps ? static_cast<int>(m) : p_.max_substeps;
@@ -106,6 +143,7 @@ bool HillFibre::substep(double lambda_j, double w, double lf_prev, double time_j
     prob.r = h * p_.v_max;
     prob.fixed_branch = p_.explicit_lag;
     prob.branch = st.dlm > 0.0 ? FvBranch::lengthening : FvBranch::shortening;  // Fortran: DRSM > 0
+    prob.initial_guess = st.dls_guess;
     const SeriesElementSolution sol = solve_series_element(prob);
     iterations += sol.iterations;
     if (!sol.converged)
@@ -125,6 +163,7 @@ bool HillFibre::substep(double lambda_j, double w, double lf_prev, double time_j
     }
   }
   const double dlm = alpha1 - k * dls;  // D.8
+  st.dls_guess = dls;                   // the next substep starts from this one's increment
   st.ls += dls;
   st.lm += dlm;
   st.dlm = dlm;
@@ -149,6 +188,8 @@ FibreResponse HillFibre::update(double lambda_f, double time, double dt,
   out.sigma_pe = parallel_stress(lambda_f, &out.dsigma_pe);
   const int m = substep_count(history, time, dt);
   SubstepState st{ls0, lm0, dlm0, 0.0, 0.0};
+  // The first substep starts Newton from the last step's SEE rate.
+  st.dls_guess = history[kSeeRate] * dt / m;
   double sigma_see = 0.0, dsigma_dls = 0.0, dlm_sum = 0.0;
   for (int j = 1; j <= m; ++j) {
     // λ̄f and t interpolated linearly over the step; the last substep ends exactly at (λ̄f, t).
@@ -171,6 +212,10 @@ FibreResponse HillFibre::update(double lambda_f, double time, double dt,
   trial[kLambdaM] = st.lm;
   trial[kDeltaLambdaM] = dlm_sum;
   trial[kLambdaF] = lambda_f;
+  if (dt > 0.0) {
+    trial[kSeeRate] = (st.ls - ls0) / dt;
+    trial[kFibreRate] = (lambda_f - lf0) / dt;
+  }
   out.substeps = m;
   out.ok = std::isfinite(out.sigma_see) && std::isfinite(out.dsigma_see) &&
            std::isfinite(trial[kLambdaM]);

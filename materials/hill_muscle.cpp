@@ -36,7 +36,7 @@ void HillMuscle::initial_history(std::span<double> history) const {
 }
 
 std::vector<std::string> HillMuscle::history_names() const {
-  return {"lambda_s", "lambda_m", "delta_lambda_m", "lambda_f"};
+  return {"lambda_s", "lambda_m", "delta_lambda_m", "lambda_f", "see_rate", "fibre_rate"};
 }
 
 std::vector<std::string> HillMuscle::cauchy_part_names() const {

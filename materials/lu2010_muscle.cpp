@@ -43,6 +43,11 @@ const std::vector<ParameterSpec>& lu2010_parameters() {
       make_spec("substeps", 0.0, 0.0, 1000.0, false, false, "",
                 "CE/SEE update substeps per time step (integer): 0 adaptive (hill_fibre.hpp), "
                 "m >= 1 fixed"),
+      make_spec("substep_tolerance", 0.01, 0.0, 1.0, true, false, "",
+                "adaptive substeps: bound of alpha Delta lambda_s per substep (hill_fibre.hpp)"),
+      make_spec("substep_rule", 0.0, 0.0, 1.0, false, false, "",
+                "adaptive substeps from 0: an estimate of the step's SEE stretch, 1: its a-priori "
+                "bound (hill_fibre.hpp)"),
       make_flag(
           "explicit_lag", 0.0,
           "1: f_lambda and force-velocity branch from the previous step (Fortran); 0: current"),
@@ -79,6 +84,8 @@ std::unique_ptr<MaterialLaw> make_lu2010(const ParameterValues& v) {
   f.frozen_ce_tangent = v.flag("frozen_ce_tangent");
   f.explicit_lag = v.flag("explicit_lag");
   f.substeps = v.integer("substeps");
+  f.substep_see_strain = v.get("substep_tolerance");
+  f.substep_rule = v.integer("substep_rule") == 0 ? SubstepRule::estimate : SubstepRule::bound;
   return std::make_unique<HillMuscle>(p);
 }
 

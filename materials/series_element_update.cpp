@@ -114,6 +114,8 @@ SeriesElementSolution solve_series_element(const SeriesElementProblem& p) {
       (std::isfinite(g_lo) && (!std::isfinite(g_hi) || std::abs(g_lo) <= std::abs(g_hi))) ? lo : hi;
   if (!std::isfinite(g_lo) && !std::isfinite(g_hi))
     x = 0.5 * (lo + hi);
+  if (std::isfinite(p.initial_guess) && p.initial_guess > lo && p.initial_guess < hi)
+    x = p.initial_guess;
 
   double best_x = x, best_g = kInf;
   double g = 0.0, dg = 0.0, sigma = 0.0;

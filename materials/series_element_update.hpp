@@ -8,6 +8,8 @@
 // the exponent α (SPEC erratum: 3.30 prints α4); g is solved instead because it is strictly
 // increasing in Δλs on the branch's domain, so its root is unique and can be bracketed in closed
 // form, which the polynomial-exponential form (with spurious roots behind the poles of f_v) is not.
+#include <limits>
+
 #include "materials/hill_curves.hpp"
 
 namespace isomuscle::materials {
@@ -28,6 +30,9 @@ struct SeriesElementProblem {
   // it from the previous step's Δλm).
   bool fixed_branch = false;
   FvBranch branch = FvBranch::shortening;
+  // A starting point for Newton (e.g. the previous substep's Δλs); used when it lies inside the
+  // bracket, NaN for none. It changes the iterations, not the root (unique on the bracket).
+  double initial_guess = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct SeriesElementSolution {

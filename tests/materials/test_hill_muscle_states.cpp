@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <map>
 #include <span>
@@ -179,11 +180,13 @@ TEST(MaterialStates, InactiveContractileElementSlidesFreely) {
 
 // Sub-stepping (hill_fibre.hpp): m substeps of a step are m single steps of dt/m with λ̄f
 // interpolated linearly from the committed λ̄f and f_t at each substep's end. The adaptive m
-// depends on the committed state only: 1 for a passive point and at isometric equilibrium, more
-// at the activation front, and the adaptive result is that of substeps = m.
+// depends on the committed state only: 1 for a passive point and at isometric equilibrium (the
+// bound rule: the state already at the SEE stress of t + dt), more at the activation front, and
+// the adaptive result is that of substeps = m.
 TEST(MaterialStates, SubstepsAreRepeatedSingleSteps) {
   for (const std::string model : {"lu2010", "tang2009"}) {
-    const std::map<std::string, double> base = {{"t0", 0.1}, {"ramp_time", 0.0}};
+    const std::map<std::string, double> base = {
+        {"t0", 0.1}, {"ramp_time", 0.0}, {"substep_rule", 1.0}};
     const auto adaptive = make_material(model, base);
     auto single_params = base, fixed_params = base;
     single_params["substeps"] = 1.0;
@@ -202,7 +205,7 @@ TEST(MaterialStates, SubstepsAreRepeatedSingleSteps) {
       return in;
     };
     // The CE at rest with σ_SEE = 0 (the fibre has just been activated).
-    std::vector<double> committed = {1.0, (1.0 + p.k) * lf0 - p.k, 0.0, lf0};
+    std::vector<double> committed = {1.0, (1.0 + p.k) * lf0 - p.k, 0.0, lf0, 0.0, 0.0};
     const int m = law.fibre().substep_count(committed, time, dt);
     EXPECT_GT(m, 4) << model;
     EXPECT_EQ(law.fibre().substep_count(committed, 0.05, dt), 1) << model << ": passive";
@@ -240,6 +243,52 @@ TEST(MaterialStates, SubstepsAreRepeatedSingleSteps) {
     EXPECT_LT((out_a.S - out.S).norm(), 1e-9 * p.sigma0) << model;
     EXPECT_LT(trial_a[kDeltaLambdaM], 0.0) << model << ": the CE shortens";
   }
+}
+
+// The estimate rule (the default, hill_fibre.hpp) against the bound: at the activation front (the
+// SEE at zero, the CE free to shorten at v_max) both ask for the bound; in a steady free
+// contraction (the SEE stress at the force-velocity value of a fibre that shortens with the CE,
+// the last step's rates stored) the estimate asks for a few substeps where the bound asks for
+// many; a change of the activation level adds the SEE stretch that follows it.
+TEST(MaterialStates, SubstepEstimateFollowsTheStateTheBoundDoesNot) {
+  const auto estimate = make_material("tang2009", {{"t0", 0.0}});
+  const auto bound = make_material("tang2009", {{"t0", 0.0}, {"substep_rule", 1.0}});
+  const HillFibre& fe = dynamic_cast<const HillMuscle&>(*estimate).fibre();
+  const HillFibre& fb = dynamic_cast<const HillMuscle&>(*bound).fibre();
+  const HillFibreParameters& p = fe.parameters();
+  const double dt = 0.01, time = 0.1, lf = 0.9;
+  // Front: σ_SEE = 0 at full activation.
+  const std::vector<double> front = {1.0, (1.0 + p.k) * lf - p.k, 0.0, lf, 0.0, 0.0};
+  EXPECT_EQ(fe.substep_count(front, time, dt), fb.substep_count(front, time, dt));
+  EXPECT_GT(fb.substep_count(front, time, dt), 20);
+  // Steady shortening: the CE shortens at half its maximal rate and the fibre with it, so that the
+  // SEE stays as it is ((1 + k) λ̄f' = λm', D.8), σ_SEE = s f_v(-1/2).
+  const double fl = force_length(lf, p.lambda_opt);
+  const double s = p.sigma0 * fl;
+  const double k_c = p.sigma0 * fl / p.a_v;
+  const double y = -0.5;  // Δλm / (Δt v_max)
+  const double fv = (1.0 + y) / (1.0 - k_c * y);
+  const double ls = 1.0 + std::log1p(s * fv / p.beta) / p.alpha;
+  const double lm_rate = y * p.v_max;
+  const std::vector<double> steady = {ls,  (1.0 + p.k) * lf - p.k * ls, lm_rate * dt, lf,
+                                      0.0, lm_rate / (1.0 + p.k)};
+  const int m_estimate = fe.substep_count(steady, time, dt);
+  const int m_bound = fb.substep_count(steady, time, dt);
+  std::printf("[ measured ] steady shortening at dt = %g s: %d substeps (estimate), %d (bound)\n",
+              dt, m_estimate, m_bound);
+  EXPECT_LE(m_estimate, 2);
+  EXPECT_GE(m_bound, 32);
+  // A change of the activation level (a slow linear ramp, 5 % -> 6 % over the step) with the SEE
+  // at the isometric stress of the level at t: the SEE stretch ln(f_t(t + dt)/f_t(t)) / α that
+  // follows it.
+  const auto ramp = make_material("tang2009", {{"t0", 0.0}, {"ramp_time", 0.1}});
+  const HillFibre& fr = dynamic_cast<const HillMuscle&>(*ramp).fibre();
+  const double ft_before = ramp->activation(0.005), ft_now = ramp->activation(0.006);
+  const double ls_iso = 1.0 + std::log1p(p.sigma0 * ft_before * fl / p.beta) / p.alpha;
+  const std::vector<double> iso = {ls_iso, (1.0 + p.k) * lf - p.k * ls_iso, 0.0, lf, 0.0, 0.0};
+  const double rise = std::log(ft_now / ft_before) / p.alpha;
+  EXPECT_EQ(fr.substep_count(iso, 0.006, 0.001),
+            static_cast<int>(std::ceil(p.alpha * rise / p.substep_see_strain)));
 }
 
 TEST(MaterialStates, SubstepsParameterMustBeAWholeNumber) {

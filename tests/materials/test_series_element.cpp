@@ -138,8 +138,8 @@ TEST(SeriesElement, AbsurdInputFailsWithoutNaN) {
 
 TEST(SeriesElement, LawReportsLocalSolveFailureAndKeepsHistoryFinite) {
   const auto law = make_material("lu2010");
-  std::vector<double> committed = {1.3, 0.9, -1e-3, 1.0};
-  std::vector<double> trial(4, -7.0);
+  std::vector<double> committed = {1.3, 0.9, -1e-3, 1.0, 0.0, 0.0};
+  std::vector<double> trial(kHillHistorySize, -7.0);
   PointInput in;
   in.F = Eigen::Vector3d(0.97, 0.97, 1.06).asDiagonal();
   in.time = 0.5;
@@ -150,12 +150,12 @@ TEST(SeriesElement, LawReportsLocalSolveFailureAndKeepsHistoryFinite) {
        {-1e-3, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     in.dt = dt;
     EXPECT_EQ(law->evaluate(in, out), PointStatus::local_solve_failed) << dt;
-    for (int i = 0; i < 4; ++i)
+    for (int i = 0; i < kHillHistorySize; ++i)
       EXPECT_EQ(trial[i], committed[i]) << dt;
     EXPECT_TRUE(out.S.allFinite());
   }
   // A committed history that overflows σ_SEE.
-  std::vector<double> bad = {1e5, 0.9, -1e-3, 1.0};
+  std::vector<double> bad = {1e5, 0.9, -1e-3, 1.0, 0.0, 0.0};
   in.history = bad;
   in.dt = 1e-3;
   EXPECT_EQ(law->evaluate(in, out), PointStatus::local_solve_failed);

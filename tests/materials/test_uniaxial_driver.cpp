@@ -285,7 +285,9 @@ TEST_P(HillProtocols, SingleStepIsometricCurveConvergesAtFirstOrder) {
 // With the default adaptive substeps (hill_fibre.hpp) the whole isometric and concentric curves,
 // activation and shortening fronts included, agree at dt = 1e-3 and 1e-4 s to 0.5 % of the peak
 // stress (one backward-Euler step per time step: 1.4 % for lu2010 and 4.6 % for tang2009, at the
-// fronts). Measured: lu2010 0.10 % (isometric), 0.07 % (concentric); tang2009 0.12 %, 0.31 %.
+// fronts). Measured with the estimate rule and substep_tolerance = 0.01 (the defaults): lu2010
+// 0.14 % (isometric and concentric), tang2009 0.23 %, 0.23 % (the bound rule at 0.025, the
+// earlier default: 0.10 %, 0.07 %; 0.12 %, 0.31 %).
 TEST_P(HillProtocols, IsometricAndConcentricAgreeAtDt1e3And1e4) {
   for (const std::string protocol : {"isometric", "concentric"}) {
     const auto coarse = run_model(GetParam(), protocol, 1e-3);
