@@ -300,6 +300,10 @@ RunResult run_iga(const Scene& scene, const RunOptions& options) {
   for (const auto& note : probes->notes())
     model.notes.push_back(note);
   s.extra["notes"] = model.notes;
+  Json probe_points = Json::object();
+  for (const auto& [name, X] : probes->points())
+    probe_points[name] = {X.x(), X.y(), X.z()};
+  s.extra["probe_points"] = probe_points;
   log("set-up: " + std::to_string(space.num_elements()) + " elements of degree (" +
       std::to_string(s.degrees[0]) + ", " + std::to_string(s.degrees[1]) + ", " +
       std::to_string(s.degrees[2]) + "), " + std::to_string(model.dofs->num_nodes()) + " nodes, " +

@@ -1,5 +1,6 @@
 #include "io/iga_run_probes.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
 #include <array>
@@ -27,11 +28,30 @@ int component_index(const std::string& name) {
     return 1;
   if (name == "z")
     return 2;
+  if (name == "normal")
+    return 4;
   return 3;
 }
 
-double pick(const Eigen::Vector3d& v, int component) {
-  return component < 3 ? v[component] : v.norm();
+// x, y, z, |v| or v . n.
+double pick(const Eigen::Vector3d& v, int component, const Eigen::Vector3d& normal) {
+  return component < 3 ? v[component] : component == 3 ? v.norm() : v.dot(normal);
+}
+
+// Outward unit normal of the face w = 0 (the boundary surface; w runs inwards, towards the
+// centreline of a shrink solid, or through the thickness of an extruded sheet) at xi:
+// n = +-(H_u x H_v) / |H_u x H_v|, the sign making n . H_w < 0.
+Eigen::Vector3d surface_normal(const geometry::NurbsVolume& v, const Eigen::Vector3d& xi,
+                               const std::string& what) {
+  const Eigen::Matrix3d J = v.jacobian(xi);
+  Eigen::Vector3d n = J.col(0).cross(J.col(1));
+  const double length = n.norm();
+  if (!(length > 0.0)) {
+    throw std::invalid_argument(what + ": the surface has no normal at xi = " + describe_point(xi) +
+                                " (a collapsed edge)");
+  }
+  n /= length;
+  return n.dot(J.col(2)) < 0.0 ? n : Eigen::Vector3d(-n);
 }
 
 // The quadrature point of element e nearest to xi, in the element's reference coordinates.
@@ -92,6 +112,19 @@ IgaProbes::IgaProbes(const std::vector<ProbeSettings>& probes, const IgaModel& m
         p.xi = r.xi;
       }
       p.element = space.locate(p.xi);
+      points_.emplace_back(s.name, space.volume().evaluate(p.xi));
+      if (p.component == 4) {
+        const auto [w0, w1] = space.volume().domain(2);
+        if (std::abs(p.xi[2] - w0) > 1e-9 * (w1 - w0)) {
+          throw std::invalid_argument(
+              what +
+              ": component = \"normal\" needs a point on the boundary surface (the face "
+              "w0: xi = [u, v, 0]); this point lies inside, at w = " +
+              format_number((p.xi[2] - w0) / (w1 - w0)));
+        }
+        p.xi[2] = w0;
+        p.normal = surface_normal(space.volume(), p.xi, what);
+      }
     }
     switch (s.kind) {
       case ProbeKind::point_displacement:
@@ -191,10 +224,10 @@ void IgaProbes::values(const iga::Problem& problem, std::vector<double>& out) co
   for (const Probe& p : probes_) {
     switch (p.settings.kind) {
       case ProbeKind::point_displacement:
-        out[p.first_column] = pick(problem.displacement_at(u_full, p.xi), p.component);
+        out[p.first_column] = pick(problem.displacement_at(u_full, p.xi), p.component, p.normal);
         break;
       case ProbeKind::face_reaction:
-        out[p.first_column] = pick(problem.sum_over_nodes(force_, p.nodes), p.component);
+        out[p.first_column] = pick(problem.sum_over_nodes(force_, p.nodes), p.component, p.normal);
         break;
       case ProbeKind::volume:
         out[p.first_column] = problem.current_volume(u_full);

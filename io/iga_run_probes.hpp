@@ -2,7 +2,10 @@
 // The [[probe]] entries of a scene on an IGA run: scalar time series, one value per column per
 // converged step (probes.csv). Columns and units:
 //
-//   point_displacement  <name>              u(X) at the point, component x|y|z or |u|, m
+//   point_displacement  <name>              u(X) at the point, component x|y|z or |u|, m, or
+//                                           "normal": u . n with n the outward unit normal of the
+//                                           reference surface there (points on the face w = 0,
+//                                           the IGES surface: a dent shows as a negative value)
 //   face_reaction       <name>              sum of the internal forces at the face's nodes, N:
 //                                           the force the support exerts on the body (at
 //                                           equilibrium f_int = f_ext + reactions; no loads here)
@@ -38,6 +41,8 @@ class IgaProbes {
   const std::vector<std::string>& columns() const { return columns_; }
   // Where points were moved (axis) and other decisions, for the log.
   const std::vector<std::string>& notes() const { return notes_; }
+  // The reference position (m) of every point probe, by name (summary.json "probe_points").
+  const std::vector<std::pair<std::string, Eigen::Vector3d>>& points() const { return points_; }
 
   // Called with the converged free values BEFORE the problem commits them: the internal force
   // (reactions) of exactly the converged state and the pre-step history of stress points.
@@ -51,6 +56,7 @@ class IgaProbes {
     ProbeSettings settings;
     int component = 3;  // 0..2 = x..z, 3 = magnitude
     Eigen::Vector3d xi = Eigen::Vector3d::Zero();
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // component "normal": outward unit normal
     int element = -1;
     int point = -1;  // >= 0: evaluate at this quadrature point of element (axis fallback)
     std::vector<int> nodes;
@@ -69,6 +75,7 @@ class IgaProbes {
   bool needs_force_ = false;
   Eigen::VectorXd force_;  // internal force of the converged state, all DOFs
   std::vector<std::string> notes_;
+  std::vector<std::pair<std::string, Eigen::Vector3d>> points_;
 };
 
 }  // namespace isomuscle::io

@@ -346,7 +346,7 @@ void OutputSettings::check_within(const TimeSettings& time) const {
 }
 
 const std::vector<std::string>& ProbeSettings::component_names() {
-  static const std::vector<std::string> names{"x", "y", "z", "magnitude"};
+  static const std::vector<std::string> names{"x", "y", "z", "magnitude", "normal"};
   return names;
 }
 
@@ -382,6 +382,11 @@ void ProbeSettings::validate() const {
   if (face)
     validate_in("face", *face);
   check_choice("component", component, component_names());
+  if (component == "normal" && kind != ProbeKind::point_displacement) {
+    throw InvalidSetting("component", std::string("\"normal\" applies to kind = "
+                                                  "\"point_displacement\" only (here \"") +
+                                          to_string(kind) + "\")");
+  }
 }
 
 void Scene::validate() const {

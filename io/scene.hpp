@@ -207,7 +207,8 @@ struct ProbeSettings {
   std::optional<Eigen::Vector3d> point;  // point_displacement, stress_parts: reference point, m
   std::optional<Eigen::Vector3d> xi;     // ... or parametric point (u, v, w) in [0, 1]^3
   std::optional<FaceSelector> face;      // face_reaction
-  std::string component = "magnitude";   // x, y, z or magnitude (point_displacement, reaction)
+  std::string component = "magnitude";   // x, y, z or magnitude (point_displacement, reaction);
+                                         // normal (point_displacement on the surface w0)
   void validate() const;
   static const std::vector<std::string>& component_names();
 };

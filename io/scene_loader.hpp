@@ -81,7 +81,8 @@
 //   kind = "point_displacement"  # (required) | "face_reaction" | "volume" | "stress_parts"
 //   point = [0, 0, 0.05]         # point_displacement, stress_parts: m; or xi = [u, v, w]
 //   # face = "v1"                # face_reaction: a face name or plane, as in [[boundary]]
-//   component = "z"              # point_displacement, face_reaction: "x"|"y"|"z"|"magnitude"
+//   component = "z"              # point_displacement, face_reaction: "x"|"y"|"z"|"magnitude";
+//                                # point_displacement on the surface w0 also "normal" (outward)
 #include <filesystem>
 #include <string_view>
 

@@ -17,7 +17,7 @@ packages=(
   libgtest-dev libgmock-dev         # unit tests
   occt-misc                         # real IGES files written by other tools (hammer.iges) for reader tests
   libbenchmark-dev                  # bench/
-  python3 python3-numpy python3-matplotlib  # validation figures
+  python3 python3-numpy python3-matplotlib python3-h5py  # validation figures (h5py reads fields.h5)
 )
 
 missing=()

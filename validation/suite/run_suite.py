@@ -1,0 +1,414 @@
+#!/usr/bin/env python3
+"""The thesis's chapter-5 example suite (SPEC section 5, thesis 5.6), run and checked with numbers.
+
+For every example in examples/ (cone, barrel, torus, half torus, depressor anguli oris) the
+committed scenes are run at their own refinement (level 0) and at finer levels (each level doubles
+the knot spans in the directions listed per example), with extra probes appended to copies of the
+scenes for the measures below. The report (OUT/report.md, with PNG figures and OUT/suite.csv)
+checks the thesis's claims:
+
+* cone and barrel: NURBS isocurve fibres and constant z fibres give nearly the same deformation:
+  `isomuscle compare` of the two final displacement fields (max and L2 difference relative to the
+  NURBS run's maximum / L2 norm);
+* torus (1/8 model with three symmetry planes): the ring radius decreases, the tube thickens in z,
+  the volume is kept (|dV/V| < 1e-3); a mirrored whole torus is written for viewing
+  (OUT/torus_whole.vtk, ParaView);
+* half torus and DAO, NURBS fibres against two straight segments ("method 1"):
+    free-end drift  |u_seg(end) - u_nurbs(end)| / |u_nurbs(end)| at the centre of the free end,
+                    and the angle between the two motions; and for each run the sideways share of
+                    the end's motion, |u - (u.t) t| / |u| with t the reference centreline tangent
+                    at the free end;
+    dent at the joint  the second difference along the muscle of the outward normal displacement
+                    of the surface at the joint of the two segments (v = 1/2):
+                    u_n(1/2) - (u_n(1/2 - h) + u_n(1/2 + h)) / 2, h = 1/8, the most negative over
+                    four points around the section (u = 0, 1/4, 1/2, 3/4); negative is a hollow;
+* every headline number: its change from level 1 to level 2 (converged to 1 % when below 0.01).
+
+Usage: /usr/bin/python3 validation/suite/run_suite.py [--exe build/release/app/isomuscle]
+           [--out validation/output/suite] [--levels 0 1 2] [--only cone barrel ...]
+Needs numpy, matplotlib and h5py (Debian python3-numpy python3-matplotlib python3-h5py).
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+EXAMPLES_DIR = os.path.join(ROOT, "examples")
+
+# Parametric points for the joint measure (scene naming, thesis method 1 cuts at v = 1/2).
+DENT_U = [0.0, 0.25, 0.5, 0.75]
+DENT_H = 0.125
+
+EXAMPLES = [
+    {"name": "cone", "scenes": {"nurbs": "cone/contract.toml", "z": "cone/contract-zfibres.toml"},
+     "refine": "vw", "headline": ["tip_z", "top_rim_x"], "compare": ("nurbs", "z"),
+     "view": (0, 2)},
+    {"name": "barrel",
+     "scenes": {"nurbs": "barrel/contract.toml", "z": "barrel/contract-zfibres.toml"},
+     "refine": "vw", "headline": ["tip_z"], "compare": ("nurbs", "z"), "view": (0, 2)},
+    {"name": "torus", "scenes": {"eighth": "torus/contract.toml"}, "refine": "vw",
+     "headline": ["ring_x", "outer_x", "inner_x", "top_z"], "view": (0, 1)},
+    {"name": "half_torus",
+     "scenes": {"nurbs": "half_torus/contract.toml", "segments": "half_torus/contract-segments.toml"},
+     "refine": "vw", "headline": ["end_x", "end_y"], "joint": True, "view": (0, 1)},
+    {"name": "dao", "scenes": {"nurbs": "dao/contract.toml", "segments": "dao/contract-segments.toml"},
+     "refine": "vw", "headline": ["end_x", "end_y", "end_z"], "joint": True, "view": (1, 2)},
+]
+
+
+def joint_probes():
+    """Probes appended to the half torus and DAO scenes: the free end's centre and a centreline
+    point before it (the reference tangent), the surface normal displacement around the joint."""
+    text = ""
+    for name, xi in [("end", [0.0, 1.0, 1.0]), ("before_end", [0.0, 0.95, 1.0])]:
+        for c in "xyz":
+            text += ('\n[[probe]]\nname = "%s_%s"\nkind = "point_displacement"\nxi = [%g, %g, %g]\n'
+                     'component = "%s"\n' % (name, c, xi[0], xi[1], xi[2], c))
+    for i, u in enumerate(DENT_U):
+        for j, v in enumerate([0.5 - DENT_H, 0.5, 0.5 + DENT_H]):
+            text += ('\n[[probe]]\nname = "normal_%d_%d"\nkind = "point_displacement"\n'
+                     'xi = [%g, %g, 0.0]\ncomponent = "normal"\n' % (i, j, u, v))
+    return text
+
+
+def scene_variant(scene, level, directions, extra, folder):
+    """The scene text with an absolute IGES path, the knot insertion of `level` and the extra
+    probes, written into folder; returns its path."""
+    path = os.path.join(EXAMPLES_DIR, scene)
+    with open(path) as f:
+        text = f.read()
+    base = os.path.dirname(path)
+    text = re.sub(r'^(iges\s*=\s*")([^"]+)(")',
+                  lambda m: m.group(1) + os.path.normpath(os.path.join(base, m.group(2))) + m.group(3),
+                  text, flags=re.M)
+    m = re.search(r"^knot_insertion\s*=\s*\[([^\]]*)\]", text, flags=re.M)
+    if not m:
+        raise SystemExit("%s: no knot_insertion line to refine" % scene)
+    k = [int(x) for x in m.group(1).split(",")]
+    for d, name in enumerate("uvw"):
+        if name in directions:
+            k[d] = (k[d] + 1) * 2 ** level - 1
+    text = text[:m.start()] + "knot_insertion = [%d, %d, %d]" % tuple(k) + text[m.end():]
+    text += extra
+    out = os.path.join(folder, "%s-L%d.toml" % (scene.replace("/", "_")[:-5], level))
+    with open(out, "w") as f:
+        f.write(text)
+    return out, k
+
+
+def run(exe, scene_path, out_dir):
+    start = time.time()
+    r = subprocess.run([exe, "run", scene_path, "--out", out_dir, "--threads", "1"],
+                       capture_output=True, text=True)
+    summary_path = os.path.join(out_dir, "summary.json")
+    if not os.path.exists(summary_path):
+        raise SystemExit("run_suite: %s wrote no summary (exit %d):\n%s" %
+                         (scene_path, r.returncode, r.stderr[-2000:]))
+    with open(summary_path) as f:
+        summary = json.load(f)
+    rows = list(csv.DictReader(open(os.path.join(out_dir, "probes.csv"))))
+    last = {k: float(v) for k, v in rows[-1].items()} if rows else {}
+    print("run_suite: %s: %s in %.1f s (%s steps, %s Newton its, %d cuts)" %
+          (os.path.basename(scene_path), summary["status"], time.time() - start, summary["steps"],
+           summary["newton_iterations"], len(summary["step_cuts"])), file=sys.stderr)
+    return {"summary": summary, "probes": last, "dir": out_dir}
+
+
+def compare(exe, a, b):
+    r = subprocess.run([exe, "compare", a, b, "--json"], capture_output=True, text=True)
+    if r.returncode != 0:
+        raise SystemExit("run_suite: compare %s %s failed: %s" % (a, b, r.stderr))
+    return json.loads(r.stdout)
+
+
+def vector(probes, prefix):
+    return [probes.get(prefix + "_" + c, float("nan")) for c in "xyz"]
+
+
+def norm(v):
+    return math.sqrt(sum(x * x for x in v))
+
+
+def joint_measures(result):
+    """Free-end motion, its sideways share and the dent at the joint of one run (module doc)."""
+    p = result["probes"]
+    points = result["summary"].get("probe_points", {})
+    u = vector(p, "end")
+    X1 = [points["end_x"][i] for i in range(3)]
+    X0 = [points["before_end_x"][i] for i in range(3)]
+    t = [a - b for a, b in zip(X1, X0)]
+    t = [x / norm(t) for x in t]
+    along = sum(a * b for a, b in zip(u, t))
+    side = [a - along * b for a, b in zip(u, t)]
+    dents = []
+    for i in range(len(DENT_U)):
+        lo, mid, hi = (p["normal_%d_%d" % (i, j)] for j in range(3))
+        dents.append(mid - 0.5 * (lo + hi))
+    return {"end": u, "sideways": norm(side) / norm(u) if norm(u) > 0 else 0.0,
+            "dent": min(dents), "dents": dents}
+
+
+def relative_change(a, b):
+    return abs(a - b) / max(abs(b), 1e-300)
+
+
+def fields_last_step(run_dir):
+    """(reference points, displacement) of the last step in fields.h5."""
+    import h5py
+    import numpy as np
+    with h5py.File(os.path.join(run_dir, "fields.h5"), "r") as f:
+        steps = sorted(k for k in f.keys() if k.startswith("step_"))
+        step = f[steps[-1]]
+        mesh = f["mesh_%06d" % int(step.attrs["mesh"])]
+        x = np.array(mesh["points"])
+        u = np.array(step["point/displacement"])
+        cells = np.array(mesh["cells"])
+    return x - u, u, cells
+
+
+HEX_EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5),
+             (2, 6), (3, 7)]
+
+
+def wireframe(points, cells, a, b):
+    """Segments of every hexahedron edge of the tessellation, projected on the (a, b) plane, mm."""
+    import numpy as np
+    edges = np.array([[c[i], c[j]] for c in cells for i, j in HEX_EDGES])
+    return 1e3 * points[edges][:, :, [a, b]]
+
+
+def plot_example(example, results, out_png):
+    """Undeformed (grey) and deformed (blue) tessellation of the final state projected on the
+    example's view plane, deformed points coloured by |u| (mm); one panel per fibre field (as the
+    thesis's Figs. 5.20-5.47)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.collections import LineCollection
+    import numpy as np
+    a, b = example["view"]
+    labels = "xyz"
+    names = list(results.keys())
+    fig, axes = plt.subplots(1, len(names), figsize=(5.4 * len(names), 4.8), squeeze=False)
+    for ax, name in zip(axes[0], names):
+        X, u, cells = fields_last_step(results[name]["dir"])
+        if example["name"] == "torus":  # the 1/8 model mirrored to the whole torus
+            n = len(X)
+            X = np.concatenate([X * np.array(s) for s in mirror_signs()])
+            u = np.concatenate([u * np.array(s) for s in mirror_signs()])
+            cells = np.concatenate([cells + k * n for k in range(8)])
+        x = X + u
+        ax.add_collection(LineCollection(wireframe(X, cells, a, b), colors="0.75", linewidths=0.4))
+        ax.add_collection(LineCollection(wireframe(x, cells, a, b), colors="tab:blue",
+                                         linewidths=0.4))
+        sc = ax.scatter(1e3 * x[:, a], 1e3 * x[:, b], s=2, c=1e3 * np.linalg.norm(u, axis=1),
+                        cmap="viridis", zorder=3)
+        fig.colorbar(sc, ax=ax, label="|u| (mm), deformed points")
+        ax.autoscale()
+        ax.set_aspect("equal")
+        ax.set_xlabel(labels[a] + " (mm)")
+        ax.set_ylabel(labels[b] + " (mm)")
+        ax.set_title("%s, %s fibres: undeformed (grey), deformed (blue)" %
+                     (example["name"].replace("_", " "), name), fontsize=9)
+    fig.tight_layout()
+    fig.savefig(out_png, dpi=110)
+    plt.close(fig)
+
+
+def mirror_signs():
+    return [(sx, sy, sz) for sx in (1, -1) for sy in (1, -1) for sz in (1, -1)]
+
+
+def write_mirrored_torus(run_dir, path):
+    """The 1/8 torus's final deformed tessellation mirrored in x, y and z: the whole torus as a
+    legacy VTK unstructured grid of hexahedra with the displacement as point data (ParaView)."""
+    import numpy as np
+    X, u, cells = fields_last_step(run_dir)
+    n = len(X)
+    points, disp, hexes = [], [], []
+    for k, s in enumerate(mirror_signs()):
+        s = np.array(s)
+        points.append((X + u) * s)
+        disp.append(u * s)
+        c = cells + k * n
+        if np.prod(s) < 0:  # a reflection turns the hexahedra inside out: swap top and bottom
+            c = c[:, [4, 5, 6, 7, 0, 1, 2, 3]]
+        hexes.append(c)
+    points, disp, hexes = np.concatenate(points), np.concatenate(disp), np.concatenate(hexes)
+    with open(path, "w") as f:
+        f.write("# vtk DataFile Version 3.0\nwhole torus mirrored from the 1/8 model\nASCII\n"
+                "DATASET UNSTRUCTURED_GRID\nPOINTS %d double\n" % len(points))
+        for p in points:
+            f.write("%.9g %.9g %.9g\n" % tuple(p))
+        f.write("CELLS %d %d\n" % (len(hexes), 9 * len(hexes)))
+        for c in hexes:
+            f.write("8 " + " ".join(str(int(i)) for i in c) + "\n")
+        f.write("CELL_TYPES %d\n" % len(hexes) + "12\n" * len(hexes))
+        f.write("POINT_DATA %d\nVECTORS displacement double\n" % len(points))
+        for d in disp:
+            f.write("%.9g %.9g %.9g\n" % tuple(d))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--exe", default=os.path.join(ROOT, "build", "release", "app", "isomuscle"))
+    parser.add_argument("--out", default=os.path.join(ROOT, "validation", "output", "suite"))
+    parser.add_argument("--levels", type=int, nargs="+", default=[0, 1, 2])
+    parser.add_argument("--only", nargs="+", default=None, help="examples to run (default: all)")
+    args = parser.parse_args()
+    if not os.access(args.exe, os.X_OK):
+        raise SystemExit("no isomuscle executable at %s (build it, or pass --exe)" % args.exe)
+    os.makedirs(os.path.join(args.out, "scenes"), exist_ok=True)
+    examples = [e for e in EXAMPLES if args.only is None or e["name"] in args.only]
+    results = {}  # (example, scene label, level) -> run result
+    rows = []
+    for ex in examples:
+        extra = joint_probes() if ex.get("joint") else ""
+        for level in args.levels:
+            for label, scene in ex["scenes"].items():
+                path, k = scene_variant(scene, level, ex["refine"], extra,
+                                        os.path.join(args.out, "scenes"))
+                out = os.path.join(args.out, "runs", "%s-%s-L%d" % (ex["name"], label, level))
+                r = run(args.exe, path, out)
+                r["knot_insertion"] = k
+                results[(ex["name"], label, level)] = r
+                s = r["summary"]
+                row = {"example": ex["name"], "fibres": label, "level": level,
+                       "knot_insertion": " ".join(map(str, k)), "status": s["status"],
+                       "elements": s["elements"], "dofs": s["dofs"], "steps": s["steps"],
+                       "newton_iterations": s["newton_iterations"], "step_cuts": len(s["step_cuts"]),
+                       "wall_s": round(s["wall_seconds"]["total"], 2),
+                       "volume_change": s["volume_final_m3"] / s["volume_initial_m3"] - 1.0}
+                for h in ex["headline"]:
+                    row[h] = r["probes"].get(h, float("nan"))
+                if ex.get("joint"):
+                    jm = joint_measures(r)
+                    row["sideways_share"] = jm["sideways"]
+                    row["dent_m"] = jm["dent"]
+                rows.append(row)
+    columns = []
+    for r in rows:
+        columns += [k for k in r if k not in columns]
+    with open(os.path.join(args.out, "suite.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=columns, restval="")
+        w.writeheader()
+        w.writerows(rows)
+    report(args, examples, results, rows)
+
+
+def fmt_mm(x):
+    return "%+.4f" % (1e3 * x)
+
+
+def report(args, examples, results, rows):
+    levels = args.levels
+    lines = ["# The chapter-5 example suite, checked (`validation/suite/run_suite.py`)", "",
+             "Every number below is read from the runs of this report (`suite.csv`, the run folders "
+             "under `runs/`). Level 0 is each committed scene's refinement; level L doubles the "
+             "knot spans L times in the directions listed. Material `tang2009` (Table 5.1), "
+             "activation full after 5 ms, 0.2 s.", ""]
+    lines += ["## Runs", "", "| example | fibres | level | knot insertion | elements | DOFs | steps | "
+              "Newton | cuts | wall s | dV/V |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append("| %s | %s | %d | %s | %d | %d | %d | %d | %d | %.1f | %.1e |" % (
+            r["example"], r["fibres"], r["level"], r["knot_insertion"], r["elements"], r["dofs"],
+            r["steps"], r["newton_iterations"], r["step_cuts"], r["wall_s"], r["volume_change"]))
+    total0 = sum(r["wall_s"] for r in rows if r["level"] == levels[0])
+    lines += ["", "Wall time of level %d (all examples): %.0f s." % (levels[0], total0), ""]
+    checks = []
+    for ex in examples:
+        name = ex["name"]
+        lines += ["## %s" % name.replace("_", " "), ""]
+        base = {label: results[(name, label, levels[0])] for label in ex["scenes"]}
+        png = "%s.png" % name
+        plot_example(ex, base, os.path.join(args.out, png))
+        lines += ["![%s](%s)" % (name, png), ""]
+        # Headline numbers per level and their convergence.
+        lines += ["| quantity | fibres | " + " | ".join("level %d" % l for l in levels) +
+                  (" | change L%d→L%d |" % (levels[-2], levels[-1]) if len(levels) > 1 else " |"),
+                  "|---|---|" + "---|" * len(levels) + ("---|" if len(levels) > 1 else "")]
+        for label in ex["scenes"]:
+            for h in ex["headline"]:
+                vals = [results[(name, label, l)]["probes"].get(h, float("nan")) for l in levels]
+                change = relative_change(vals[-2], vals[-1]) if len(vals) > 1 else float("nan")
+                lines.append("| %s (mm) | %s | %s |%s" % (
+                    h, label, " | ".join(fmt_mm(v) for v in vals),
+                    " %.2f %% |" % (100 * change) if len(vals) > 1 else ""))
+                if len(vals) > 1:
+                    checks.append(("%s %s %s converged to 1 %% (L%d→L%d)" %
+                                   (name, label, h, levels[-2], levels[-1]), change < 0.01,
+                                   "%.2f %%" % (100 * change)))
+        lines.append("")
+        if "compare" in ex:
+            a, b = ex["compare"]
+            lines += ["NURBS against constant z fibres (`isomuscle compare`, final state):", "",
+                      "| level | max difference / max \\|u\\| | L2 difference / L2 \\|u\\| | "
+                      "max \\|u\\| (mm) |", "|---|---|---|---|"]
+            for l in levels:
+                c = compare(args.exe, results[(name, a, l)]["dir"], results[(name, b, l)]["dir"])
+                lines.append("| %d | %.2f %% | %.2f %% | %.3f |" % (
+                    l, 100 * c["relative_max_difference"], 100 * c["relative_l2_difference"],
+                    1e3 * c["max_displacement_a_m"]))
+                if l == levels[-1]:
+                    checks.append(("%s: NURBS and z fibres nearly the same (L2 difference < 10 %%)"
+                                   % name, c["relative_l2_difference"] < 0.1,
+                                   "%.2f %%" % (100 * c["relative_l2_difference"])))
+            lines.append("")
+        if name == "torus":
+            r = results[(name, "eighth", levels[-1])]
+            p, s = r["probes"], r["summary"]
+            dV = s["volume_final_m3"] / s["volume_initial_m3"] - 1.0
+            ring = 0.013
+            lines += ["At level %d: ring radius %.3f → %.3f mm (%+.1f %%), tube half-height 4 mm "
+                      "%+.3f mm, volume change %.1e." % (levels[-1], 1e3 * ring,
+                                                         1e3 * (ring + p["ring_x"]),
+                                                         100 * p["ring_x"] / ring, 1e3 * p["top_z"],
+                                                         dV), ""]
+            checks += [("torus: the ring radius decreases", p["ring_x"] < 0,
+                        "%+.3f mm" % (1e3 * p["ring_x"])),
+                       ("torus: the tube thickens in z", p["top_z"] > 0,
+                        "%+.3f mm" % (1e3 * p["top_z"])),
+                       ("torus: |dV/V| < 1e-3", abs(dV) < 1e-3, "%.1e" % dV)]
+            write_mirrored_torus(results[(name, "eighth", levels[0])]["dir"],
+                                 os.path.join(args.out, "torus_whole.vtk"))
+            lines += ["The whole torus, mirrored from the 1/8 model (level %d): `torus_whole.vtk` "
+                      "(ParaView)." % levels[0], ""]
+        if ex.get("joint"):
+            lines += ["| level | fibres | free end u (mm) | sideways share | dent at the joint "
+                      "(mm) | drift vs NURBS | angle vs NURBS |", "|---|---|---|---|---|---|---|"]
+            for l in levels:
+                jn = joint_measures(results[(name, "nurbs", l)])
+                js = joint_measures(results[(name, "segments", l)])
+                diff = [a_ - b_ for a_, b_ in zip(js["end"], jn["end"])]
+                drift = norm(diff) / norm(jn["end"])
+                cosang = sum(a_ * b_ for a_, b_ in zip(js["end"], jn["end"])) / (
+                    norm(js["end"]) * norm(jn["end"]))
+                angle = math.degrees(math.acos(max(-1.0, min(1.0, cosang))))
+                for lab, j, d, ang in [("nurbs", jn, 0.0, 0.0), ("segments", js, drift, angle)]:
+                    lines.append("| %d | %s | (%s) | %.3f | %+.4f | %.1f %% | %.1f° |" % (
+                        l, lab, ", ".join("%+.3f" % (1e3 * x) for x in j["end"]), j["sideways"],
+                        1e3 * j["dent"], 100 * d, ang))
+                if l == levels[-1]:
+                    checks += [("%s: two segments misplace the free end (drift vs NURBS > 10 %%)" %
+                                name, drift > 0.1, "%.1f %%, %.1f°" % (100 * drift, angle)),
+                               ("%s: two segments dent the joint deeper than NURBS fibres" % name,
+                                js["dent"] < jn["dent"],
+                                "%+.4f vs %+.4f mm" % (1e3 * js["dent"], 1e3 * jn["dent"]))]
+            lines.append("")
+    lines += ["## Checks", "", "| claim | holds | number |", "|---|---|---|"]
+    for claim, ok, number in checks:
+        lines.append("| %s | %s | %s |" % (claim, "yes" if ok else "**no**", number))
+    lines.append("")
+    with open(os.path.join(args.out, "report.md"), "w") as f:
+        f.write("\n".join(lines))
+    print("run_suite: wrote %s" % os.path.join(args.out, "report.md"), file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
