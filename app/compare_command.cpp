@@ -52,6 +52,8 @@ int compare(const CompareArgs& args) {
             << " material points of A's solid";
   if (c.outside_b > 0)
     std::cout << ", " << c.outside_b << " of them outside B (left out)";
+  if (c.outside_a > 0)
+    std::cout << ", " << c.outside_a << " outside A's own mesh (left out)";
   std::cout << "\n";
   print_side("A", c.a);
   print_side("B", c.b);

@@ -16,8 +16,12 @@ std::vector<CommandInstaller>& command_installers() {
 namespace {
 int g_exit_code = 0;
 }
-void set_exit_code(int code) { g_exit_code = code; }
-int exit_code() { return g_exit_code; }
+void set_exit_code(int code) {
+  g_exit_code = code;
+}
+int exit_code() {
+  return g_exit_code;
+}
 
 }  // namespace isomuscle::app
 
@@ -26,7 +30,8 @@ int main(int argc, char** argv) {
   CLI::App app{"isomuscle: active skeletal muscle on NURBS solids (isogeometric analysis)"};
   app.set_version_flag("--version", std::string("isomuscle ") + kVersion);
   app.require_subcommand(1);
-  for (auto& install : app::command_installers()) install(app);
+  for (auto& install : app::command_installers())
+    install(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,8 +1,8 @@
 // `isomuscle run SCENE.toml [--out DIR] [--threads N]`: one isogeometric run of a scene into a
-// results folder (io/iga_run.hpp), by default runs/<scene name> under the current directory.
-// Exit codes: 0 converged; 1 the run failed (set-up or a step that would not converge: the folder
-// holds the results up to the last converged step and summary.json the reason); 2 the scene file
-// is wrong (the message reads "scene.toml:LINE: ...").
+// results folder (io/scene_run.hpp), IGA or tetrahedra, by default runs/<scene name> under the
+// current directory. Exit codes: 0 converged; 1 the run failed (set-up or a step that would not
+// converge: the folder holds the results up to the last converged step and summary.json the
+// reason); 2 the scene file is wrong (the message reads "scene.toml:LINE: ...").
 //
 // Progress: on a terminal one line, rewritten in place after every step (time, step, Newton
 // iterations, residual); otherwise (a log file, a pipe) one plain line per step.
@@ -16,9 +16,9 @@
 #include <string>
 
 #include "app/command_registry.hpp"
-#include "io/iga_run.hpp"
 #include "io/scene_loader.hpp"
 #include "io/scene_reader.hpp"
+#include "io/scene_run.hpp"
 
 namespace isomuscle::app {
 
@@ -78,7 +78,7 @@ int run(const RunArgs& args) {
   std::cout << "isomuscle run: " << args.scene << " -> " << options.out_dir.string() << std::endl;
   io::RunResult result;
   try {
-    result = io::run_iga(scene, options);
+    result = io::run_scene(scene, options);
   } catch (const std::exception& e) {
     if (line_open)
       std::cerr << "\n";

@@ -1,6 +1,5 @@
 #include "io/iga_run_probes.hpp"
 
-#include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <algorithm>
 #include <array>
@@ -36,22 +35,6 @@ int component_index(const std::string& name) {
 // x, y, z, |v| or v . n.
 double pick(const Eigen::Vector3d& v, int component, const Eigen::Vector3d& normal) {
   return component < 3 ? v[component] : component == 3 ? v.norm() : v.dot(normal);
-}
-
-// Outward unit normal of the face w = 0 (the boundary surface; w runs inwards, towards the
-// centreline of a shrink solid, or through the thickness of an extruded sheet) at xi:
-// n = +-(H_u x H_v) / |H_u x H_v|, the sign making n . H_w < 0.
-Eigen::Vector3d surface_normal(const geometry::NurbsVolume& v, const Eigen::Vector3d& xi,
-                               const std::string& what) {
-  const Eigen::Matrix3d J = v.jacobian(xi);
-  Eigen::Vector3d n = J.col(0).cross(J.col(1));
-  const double length = n.norm();
-  if (!(length > 0.0)) {
-    throw std::invalid_argument(what + ": the surface has no normal at xi = " + describe_point(xi) +
-                                " (a collapsed edge)");
-  }
-  n /= length;
-  return n.dot(J.col(2)) < 0.0 ? n : Eigen::Vector3d(-n);
 }
 
 // The quadrature point of element e nearest to xi, in the element's reference coordinates.

@@ -4,8 +4,10 @@
 // number). The material points are a Gauss grid in the parameter space of run A's geometry
 // (solution.h5 /geometry: every knot span cut into `subdivisions` sub-cells per direction,
 // `points` Gauss points in each), mapped to the reference configuration X = H(xi). At each, u_A
-// is evaluated at xi and u_B at X (point inversion of B's solid); points that lie outside B (a
-// 1/8 model against a whole one) are counted and left out. Reported:
+// is evaluated at xi and u_B at X (point inversion of B's solid, or the element of B's
+// tetrahedral mesh holding X: solution_sampler.hpp); points that lie outside B (a 1/8 model
+// against a whole one, a chord of a straight-sided mesh beyond its tolerance) are counted and left
+// out. Reported:
 //   max |u_A - u_B| and its place, relative to max |u_A|;
 //   L2:  (int |u_A - u_B|^2 dV)^(1/2) / (int |u_A|^2 dV)^(1/2), the integrals by the same Gauss
 //        grid with weights det(dX/dxi) w (over the points inside B);
@@ -39,7 +41,8 @@ struct RunComparison {
   RunSide a, b;
   double time = 0.0;  // s
   int samples = 0;    // material points of A's grid
-  int outside_b = 0;  // of them outside B's solid (left out)
+  int outside_b = 0;  // of them outside B's solid or mesh (left out)
+  int outside_a = 0;  // of them outside A's own mesh (a tetrahedral A: chords of the boundary)
   double max_difference_m = 0.0;
   Eigen::Vector3d max_difference_at = Eigen::Vector3d::Zero();  // X, m
   double max_displacement_a_m = 0.0;

@@ -74,6 +74,10 @@ Face parse_face(const std::string& key, const std::string& name) {
   return static_cast<Face>(std::find(names.begin(), names.end(), name) - names.begin());
 }
 
+const char* to_string(Discretisation d) {
+  return d == Discretisation::iga ? "iga" : "tet";
+}
+
 const char* to_string(Construction c) {
   return c == Construction::shrink ? "shrink" : "extrude";
 }
@@ -276,6 +280,18 @@ Eigen::Vector3d BoundarySettings::prescribed_displacement(double time) const {
   return u;
 }
 
+void TetrahedraSettings::validate() const {
+  if (mesh.empty()) {
+    check_range("element_size", element_size, Range::positive());
+  } else {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(mesh, ec))
+      throw InvalidSetting("mesh", "names no readable file (looked for " + mesh.string() + ")");
+    check_range("mesh_unit", mesh_unit, Range::positive());
+  }
+  check_range("order", order, Range::closed(1, 2));
+}
+
 void LoadSettings::validate() const {
   check_vector("traction", traction, false);
   check_range("start", start, Range::non_negative());
@@ -390,6 +406,8 @@ void ProbeSettings::validate() const {
 }
 
 void Scene::validate() const {
+  if (discretisation == Discretisation::tet)
+    validate_in("tetrahedra", tetrahedra);
   validate_in("geometry", geometry);
   validate_in("material", material);
   validate_in("fibres", fibres);

@@ -213,9 +213,25 @@ struct ProbeSettings {
   static const std::vector<std::string>& component_names();
 };
 
+// discretisation = "iga" | "tet": the NURBS solid itself as the mesh (isogeometric analysis), or
+// tetrahedra of the same shape (the comparison runs; tet/).
+enum class Discretisation { iga, tet };
+const char* to_string(Discretisation d);
+
+// [tetrahedra] (discretisation = "tet"): the IGES boundary meshed by gmsh, or a user's mesh.
+struct TetrahedraSettings {
+  double element_size = 0.0;   // m, target edge length when meshing the IGES boundary
+  int order = 2;               // 1: 4-node, 2: 10-node (the mixed formulation needs 10 nodes)
+  std::filesystem::path mesh;  // a gmsh .msh file instead of meshing (relative to the scene)
+  double mesh_unit = 1.0;      // metres per length unit of the .msh file
+  void validate() const;       // element_size > 0 unless a mesh is given, order 1 or 2
+};
+
 struct Scene {
   std::filesystem::path file;  // the scene file, for messages and relative paths
   std::string description;
+  Discretisation discretisation = Discretisation::iga;
+  TetrahedraSettings tetrahedra;  // discretisation = "tet"
   GeometrySettings geometry;
   MaterialSettings material;
   FibreSettings fibres;

@@ -226,6 +226,22 @@ BoundarySettings read_boundary(SceneTable t) {
   return b;
 }
 
+TetrahedraSettings read_tetrahedra(SceneTable t, const std::filesystem::path& base) {
+  TetrahedraSettings s;
+  if (t.type_of("mesh") != toml::node_type::none) {
+    s.mesh = resolve(base, t.string("mesh", required));
+    s.mesh_unit = t.number("mesh_unit", s.mesh_unit, Range::positive());
+    if (t.type_of("element_size") != toml::node_type::none)
+      t.fail("element_size", "and 'mesh' exclude each other: the mesh is given");
+  } else {
+    s.element_size = t.number("element_size", required, Range::positive());
+  }
+  s.order = t.integer("order", s.order, Range::closed(1, 2));
+  t.finish();
+  validate_at(t, s);
+  return s;
+}
+
 LoadSettings read_load(SceneTable t) {
   LoadSettings l;
   const toml::node_type face_type = t.type_of("face");
@@ -330,8 +346,8 @@ ProbeSettings read_probe(SceneTable t) {
 Scene scene_from_document(const toml::table& document, const std::filesystem::path& path) {
   SceneTable root(document, path.string());
   // Unknown top-level tables first: a misspelt [materal] explains a "missing [material]".
-  for (const char* key : {"description", "geometry", "material", "fibres", "boundary", "load",
-                          "time", "solver", "output", "probe"}) {
+  for (const char* key : {"description", "discretisation", "tetrahedra", "geometry", "material",
+                          "fibres", "boundary", "load", "time", "solver", "output", "probe"}) {
     root.allow(key);
   }
   root.finish();
@@ -340,6 +356,12 @@ Scene scene_from_document(const toml::table& document, const std::filesystem::pa
   scene.file = path;
   const std::filesystem::path base = path.parent_path();
   scene.description = root.string("description", "");
+  const std::string discretisation = root.choice("discretisation", "iga", {"iga", "tet"});
+  forbid_unused(root, "discretisation", discretisation, {{"tetrahedra", {"tet"}}});
+  if (discretisation == "tet") {
+    scene.discretisation = Discretisation::tet;
+    scene.tetrahedra = read_tetrahedra(root.table("tetrahedra", required), base);
+  }
   scene.geometry = read_geometry(root.table("geometry", required), base);
   scene.material = read_material(root.table("material", required));
   scene.fibres = read_fibres(root.optional_table("fibres"), scene.geometry.centreline);

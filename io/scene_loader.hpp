@@ -5,6 +5,12 @@
 // marked (required) has none.
 //
 //   description = "barrel, isometric contraction"
+//   discretisation = "iga"       # "iga": the NURBS solid is the mesh; "tet": tetrahedra of the
+//                                # same shape (then [tetrahedra] is required)
+//   # [tetrahedra]
+//   # element_size = 0.002       # m, gmsh meshes the IGES boundary (required unless mesh)
+//   # order = 2                  # 1: 4-node, 2: 10-node tetrahedra
+//   # mesh = "barrel.msh"        # instead: a gmsh mesh of the same shape; mesh_unit = 1.0 (m)
 //
 //   [geometry]
 //   iges = "barrel.igs"          # (required) relative to the scene file

@@ -57,7 +57,61 @@ geometry::NurbsVolume read_volume(hid_t file, const char* group_name, const std:
   }
 }
 
+void write_mesh(hid_t file, const tet::TetMesh& mesh, const std::string& where) {
+  hdf5::Handle group = hdf5::create_group(file, "tet", where);
+  const std::string at = where + ":/tet";
+  const std::int64_t order = mesh.order;
+  hdf5::write_scalar_attribute(group.get(), "order", H5T_STD_I64LE, H5T_NATIVE_INT64, &order, at);
+  std::vector<double> nodes;
+  nodes.reserve(3 * mesh.nodes.size());
+  for (const Eigen::Vector3d& x : mesh.nodes)
+    nodes.insert(nodes.end(), {x.x(), x.y(), x.z()});
+  hdf5::write_doubles(group.get(), "nodes", nodes, 3, at + "/nodes");
+  const std::vector<std::int64_t> elements(mesh.elements.begin(), mesh.elements.end());
+  hdf5::write_dataset(group.get(), "elements", static_cast<hsize_t>(mesh.num_elements()),
+                      static_cast<hsize_t>(mesh.nodes_per_element()), false, H5T_STD_I64LE,
+                      H5T_NATIVE_INT64, elements.data(), at + "/elements");
+}
+
+tet::TetMesh read_mesh(hid_t file, const std::string& where) {
+  const std::string at = where + ":/tet";
+  hdf5::Handle group = hdf5::open_group(file, "tet", where);
+  tet::TetMesh mesh;
+  mesh.order = static_cast<int>(hdf5::read_int_attribute(group.get(), "order", at));
+  const hdf5::Array<double> nodes = hdf5::read_doubles(group.get(), "nodes", at);
+  const hdf5::Array<std::int64_t> elements = hdf5::read_ints(group.get(), "elements", at);
+  if (nodes.columns() != 3 || (mesh.order != 1 && mesh.order != 2) ||
+      static_cast<int>(elements.columns()) != mesh.nodes_per_element()) {
+    throw std::runtime_error(at + ": nodes must have 3 columns and elements 4 or 10 (order " +
+                             std::to_string(mesh.order) + ")");
+  }
+  for (std::size_t i = 0; i < nodes.rows(); ++i)
+    mesh.nodes.emplace_back(nodes.values[3 * i], nodes.values[3 * i + 1], nodes.values[3 * i + 2]);
+  mesh.elements.assign(elements.values.begin(), elements.values.end());
+  mesh.element_region.assign(elements.rows(), 0);
+  try {
+    mesh.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(at + ": not a valid mesh: " + e.what());
+  }
+  return mesh;
+}
+
 }  // namespace
+
+SolutionWriter::SolutionWriter(std::filesystem::path path, const geometry::NurbsVolume& geometry,
+                               const tet::TetMesh& mesh)
+    : path_(std::move(path)), rows_(mesh.num_nodes()) {
+  hdf5::Quiet quiet;
+  hdf5::Handle file = hdf5::create_file(path_.string());
+  const std::string where = path_.string();
+  hdf5::write_string_attribute(file.get(), "discretisation", "tet", where);
+  hdf5::write_scalar_attribute(file.get(), "format", H5T_STD_I64LE, H5T_NATIVE_INT64, &kFormat,
+                               where);
+  write_volume(file.get(), "geometry", geometry, where);
+  write_mesh(file.get(), mesh, where);
+  file.close("closing " + where);
+}
 
 SolutionWriter::SolutionWriter(std::filesystem::path path, const geometry::NurbsVolume& geometry,
                                const geometry::NurbsVolume& iga_space)
@@ -78,7 +132,7 @@ void SolutionWriter::write_step(double time, const DisplacementRows& displacemen
   if (displacement.rows() != rows_) {
     throw std::invalid_argument(where + ": " + std::to_string(displacement.rows()) +
                                 " displacement rows for " + std::to_string(rows_) +
-                                " control points");
+                                " control points or nodes");
   }
   if (!std::isfinite(time) || (steps_ > 0 && !(time > last_time_))) {
     throw std::invalid_argument(where + ": time " + format_number(time) +
@@ -123,13 +177,16 @@ StoredSolution read_solution(const std::filesystem::path& path) {
     throw std::runtime_error(where + ": solution file format " + std::to_string(format) +
                              ", this isomuscle reads format " + std::to_string(kFormat));
   }
-  if (s.discretisation != "iga") {
+  if (s.discretisation != "iga" && s.discretisation != "tet") {
     throw std::runtime_error(where + ": discretisation '" + s.discretisation +
-                             "' is not one this isomuscle reads (iga)");
+                             "' is not one this isomuscle reads (iga, tet)");
   }
   s.geometry = read_volume(file.get(), "geometry", where);
-  s.iga = read_volume(file.get(), "iga", where);
-  const Eigen::Index rows = s.iga->num_control_points();
+  if (s.discretisation == "iga")
+    s.iga = read_volume(file.get(), "iga", where);
+  else
+    s.tet = read_mesh(file.get(), where);
+  const Eigen::Index rows = s.iga ? s.iga->num_control_points() : s.tet->num_nodes();
   for (std::size_t k = 0;; ++k) {
     const std::string name = hdf5::numbered("step", k);
     if (!hdf5::has_link(file.get(), name))

@@ -12,9 +12,13 @@
 //   /iga             the refined solid whose basis is the displacement space (IGA runs): same
 //                    datasets. Exact refinement keeps the geometry and the parametrisation, so a
 //                    parameter of /geometry is the same material point in /iga.
-//   /step_000000     attribute time (s); dataset displacement [control points of /iga, 3] (m):
-//                    the coefficients u_a of u(xi) = sum_a R_a(xi) u_a, merged control points
-//                    (seam, axis) repeated with their node's value.
+//   /tet             the tetrahedral mesh whose nodal field is the displacement (tet runs):
+//                    attribute order (1 | 2), datasets nodes [n, 3] (m), elements [c, 4 | 10]
+//                    (gmsh's node order, tet/tet_mesh.hpp)
+//   /step_000000     attribute time (s); dataset displacement [control points of /iga or nodes of
+//                    /tet, 3] (m): the coefficients u_a of u(xi) = sum_a R_a(xi) u_a (merged
+//                    control points, seam and axis, repeated with their node's value), or the
+//                    nodal values.
 // Steps are appended as the run goes (open, write, close), so a run that fails keeps the file
 // valid with every step written before.
 #include <Eigen/Core>
@@ -24,6 +28,7 @@
 #include <vector>
 
 #include "geometry/nurbs_volume.hpp"
+#include "tet/tet_mesh.hpp"
 
 namespace isomuscle::io {
 
@@ -35,6 +40,9 @@ class SolutionWriter {
   // when it cannot be written.
   SolutionWriter(std::filesystem::path path, const geometry::NurbsVolume& geometry,
                  const geometry::NurbsVolume& iga_space);
+  // The same for a tetrahedral run: the geometry and the mesh.
+  SolutionWriter(std::filesystem::path path, const geometry::NurbsVolume& geometry,
+                 const tet::TetMesh& mesh);
 
   // Appends the control-point displacements at `time` (s, increasing). std::invalid_argument for
   // a wrong row count, a non-finite value or a time that does not increase.
@@ -53,9 +61,10 @@ class SolutionWriter {
 
 struct StoredSolution {
   std::filesystem::path path;
-  std::string discretisation;                // "iga"
+  std::string discretisation;                // "iga" or "tet"
   geometry::NurbsVolume geometry;            // before refinement
   std::optional<geometry::NurbsVolume> iga;  // the displacement space of an IGA run
+  std::optional<tet::TetMesh> tet;           // the mesh of a tetrahedral run
   std::vector<double> times;                 // s, one per step
   std::vector<DisplacementRows> displacement;
 };

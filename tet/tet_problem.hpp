@@ -89,6 +89,7 @@ class TetProblem : public solver::NonlinearProblem {
 
   Formulation formulation() const { return formulation_; }  // resolved, never automatic
   const TetSpace& space() const { return space_; }
+  const materials::MaterialLaw& law() const { return law_; }
   int num_colours() const { return colouring_.n_colours(); }
   const solver::SparsityPattern& pattern() const { return pattern_; }
   // Free index of DOF 3 node + component, or solver::kPrescribed.

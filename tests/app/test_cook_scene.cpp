@@ -1,7 +1,7 @@
 // Nearly incompressible Cook's membrane through the user's path (examples/cook/README.md): the
 // committed scene examples/cook/cook.toml (an IGES sheet extruded into a plate, a dead shear
 // traction [[load]], plane strain by two plane selectors) is loaded, its refinement and
-// formulation changed, and run by io::run_iga. The corner displacement UY of the mixed u-p-J
+// formulation changed, and run by io::run_scene. The corner displacement UY of the mixed u-p-J
 // formulation must come within 1 % of the reference 4.7011 (B. Müller, thesis, Universität
 // Duisburg-Essen 2015, as quoted by the Elmer test suite) at 16 x 16 elements and converge to it
 // monotonically from above; the displacement formulation must visibly lock (below 85 % of it).
@@ -13,8 +13,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "io/iga_run.hpp"
 #include "io/scene_loader.hpp"
+#include "io/scene_run.hpp"
 
 namespace isomuscle {
 namespace {
@@ -39,7 +39,7 @@ CookRun run_cook(int n, io::Formulation formulation) {
   const fs::path out =
       fs::temp_directory_path() / ("isomuscle_cook_" + std::to_string(getpid()) + "_" +
                                    std::to_string(n) + "_" + io::to_string(formulation));
-  const io::RunResult r = io::run_iga(scene, {out, 1, {}, {}});
+  const io::RunResult r = io::run_scene(scene, {out, 1, {}, {}});
   EXPECT_TRUE(r.converged) << r.failure_reason;
   CookRun c;
   if (r.summary.probes.at("corner_uy"))

@@ -73,7 +73,7 @@ TEST(SolutionFile, StepsReadBackExactlyAndTheFieldIsEvaluatedAnywhere) {
         Eigen::Vector3d(0.5, 0.93, 0.8)}) {
     const Eigen::Vector3d X = s.coarse.evaluate(xi);
     const Eigen::Vector3d exact = 2.0 * A * X + b;
-    EXPECT_LT((sampler.at_parameter(xi, 1) - exact).norm(), 1e-16) << xi.transpose();
+    EXPECT_LT((*sampler.at_parameter(xi, 1) - exact).norm(), 1e-16) << xi.transpose();
     const std::optional<Eigen::Vector3d> at_X = sampler.at_point(X, 1);
     ASSERT_TRUE(at_X.has_value()) << X.transpose();
     EXPECT_LT((*at_X - exact).norm(), 1e-15) << X.transpose();

@@ -224,7 +224,8 @@ def run_scene(exe, setup, scene_path, scene, out_dir, log):
 def write_run_csv(run, path):
     cols = {"time_s": run.t, "eng_strain": run.strain, "pull_force_N": run.force,
             "force_per_mean_area_Pa": run.p_mean, "force_per_mid_area_Pa": run.p_mid,
-            "centre_local_strain": run.local, "volume_change": run.dv,
+            "centre_local_strain": run.local, "mid_surface_radial_m": run.col["mid_surface_x"],
+            "volume_change": run.dv,
             "volume_change_virial": run.dv_virial}
     for probe in ("centre", "mid_inner", "mid_outer", "near_end"):
         for p in PARTS:
@@ -287,7 +288,8 @@ def time_rows(run, mp, times):
              "p_mid": run.at_time(run.p_mid, t), "local": run.at_time(run.local, t),
              "mp_P": float(np.interp(t, mp["time_s"], mp["eng_stress_Pa"])),
              "mp_stretch": float(np.interp(t, mp["time_s"], mp["stretch"])),
-             "dv": run.at_time(run.dv, t), "dv_virial": run.at_time(run.dv_virial, t)}
+             "dv": run.at_time(run.dv, t), "dv_virial": run.at_time(run.dv_virial, t),
+             "bulge": run.at_time(run.col["mid_surface_x"], t)}
         for p in PARTS:
             r[p] = run.at_time(run.part("centre", p), t)
             r["mp_" + p] = float(np.interp(t, mp["time_s"], mp[MP_PART[p]]))
@@ -401,7 +403,7 @@ def figure_sensitivity(sens, out):
                 lim = SENS_STRAIN + 1e-9
                 mx = mp["eng_strain"][mk]
                 ax.plot(100 * run.strain[keep], run.p_mean[keep] * KPA, "-", color=f"C{i}",
-                        label=f"{p} = {v:g} {unit}: barrel F L0/V0".strip())
+                        label=f"{p} = {v:g}{' ' + unit if unit else ''}: barrel F L0/V0")
                 ax.plot(100 * mx[mx <= lim], mp["eng_stress_Pa"][mk][mx <= lim] * KPA, "--",
                         color=f"C{i}", lw=0.9, label="  material point P33")
             strain_axes(ax, f"§3.6 in 3D: {p} ({'passive' if setup == 'setup1' else 'activated'}"
@@ -418,7 +420,12 @@ def figure_sensitivity(sens, out):
 
 
 def kpa(x):
-    return f"{x * KPA:.2f}"
+    return "–" if not math.isfinite(x) else f"{x * KPA:.2f}"
+
+
+def signed_pct(a, b, digits=1):
+    d = pct(a, b)
+    return "–" if not math.isfinite(d) else f"{d:+.{digits}f} %"
 
 
 def stats_table(runs):
@@ -442,7 +449,7 @@ def elongation_table(rows):
             f"({pct(r['p_mean'], r['mp_P']):+.0f} %) | {kpa(r['p_mid'])} "
             f"({pct(r['p_mid'], r['mp_P']):+.0f} %) | {kpa(r['mp_sigma'])} | {kpa(r['centre'])} "
             f"({pct(r['centre'], r['mp_sigma']):+.0f} %) | {100 * r['local']:.2f} % | "
-            f"{kpa(r['mp_sigma_local'])} | {pct(r['centre'], r['mp_sigma_local']):+.1f} % | "
+            f"{kpa(r['mp_sigma_local'])} | {signed_pct(r['centre'], r['mp_sigma_local'])} | "
             f"{kpa(r['inner'])} / {kpa(r['outer'])} | {r['dv']:.3g} ({r['dv_virial']:.3g}) |")
     return lines
 
@@ -627,7 +634,8 @@ def main():
             f"({pct(tot[i], mp['sigma33_Pa'][j]):+.1f} %);",
             f"* at t = {t_ref} s the centre has shortened by {-100 * r['local']:.2f} % (the thin, "
             f"clamped ends are stretched by the thick middle: σ_ff on the axis 5 mm from the clamp "
-            f"{kpa(r['near_end'])} kPa); f_λ((1 + ε_centre)/λopt) / f_λ(1/λopt) = {fl:.3f}, and the "
+            f"{kpa(r['near_end'])} kPa; the mid-section bulges by {1e3 * r['bulge']:.2f} mm in radius); "
+            f"f_λ((1 + ε_centre)/λopt) / f_λ(1/λopt) = {fl:.3f}, and the "
             f"centre's σ_CE part is {r['see'] / r['mp_see']:.3f} of the point's;",
             f"* matrix and PE parts at t = {t_ref} s: {kpa(r['matrix'])} and {kpa(r['pe'])} kPa "
             f"({100 * abs(r['matrix']) / r['total']:.2f} % and {100 * abs(r['pe']) / r['total']:.2f} % "

@@ -1,4 +1,4 @@
-#include "io/iga_run.hpp"
+#include "io/scene_run.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -11,10 +11,9 @@
 #include <system_error>
 
 #include "io/csv_writer.hpp"
-#include "io/iga_run_fields.hpp"
-#include "io/iga_run_probes.hpp"
-#include "io/iga_run_setup.hpp"
-#include "io/solution_file.hpp"
+#include "io/iga_run_model.hpp"
+#include "io/run_model.hpp"
+#include "io/tet_run_model.hpp"
 #include "isomuscle/version.hpp"
 #include "solver/time_stepper.hpp"
 
@@ -54,7 +53,7 @@ class ScopedSeconds {
   Clock::time_point start_;
 };
 
-// The iga::Problem as Newton and the time stepper see it, with two additions:
+// The discretisation's problem as Newton and the time stepper see it, with two additions:
 // * a linear-extrapolation predictor (as Abaqus's default): the unknowns are y = u - s, where the
 //   shift s is advanced at every step start by v dt, v = (u_n - u_{n-1}) / dt_n the velocity of the
 //   last converged step. The stepper starts each step from the last converged y, so Newton starts
@@ -62,14 +61,15 @@ class ScopedSeconds {
 //   the initial residual is then that of the change in velocity, not of the whole increment. A
 //   step that is cut back is restarted with s recomputed for the shorter dt. Residual and tangent
 //   are those of u (dr/dy = dr/du). Where there is no velocity yet (the first step, or after a
-//   held state) the linearised Dirichlet predictor of iga::Problem::predict is used instead: it
-//   moves the interior with the prescribed increment, so the first iterate does not squeeze the
+//   held state) the problem's own predictor (iga::Problem::predict, linearised Dirichlet) instead:
+//   it moves the interior with the prescribed increment, so the first iterate does not squeeze the
 //   whole increment into the elements next to the moved face.
 // * a hook that runs on the converged state just before it is committed (exact reactions and the
 //   pre-step histories for the probes).
 class SteppedProblem final : public solver::NonlinearProblem {
  public:
-  SteppedProblem(iga::Problem& problem, std::function<void(const Eigen::VectorXd&)> before_commit)
+  SteppedProblem(solver::NonlinearProblem& problem,
+                 std::function<void(const Eigen::VectorXd&)> before_commit)
       : problem_(problem),
         before_commit_(std::move(before_commit)),
         shift_committed_(Eigen::VectorXd::Zero(problem.size())),
@@ -111,7 +111,7 @@ class SteppedProblem final : public solver::NonlinearProblem {
   }
 
  private:
-  iga::Problem& problem_;
+  solver::NonlinearProblem& problem_;
   std::function<void(const Eigen::VectorXd&)> before_commit_;
   Eigen::VectorXd shift_committed_, shift_, velocity_, u_committed_, u_;
   double dt_ = 0.0;
@@ -145,7 +145,7 @@ std::vector<double> output_times(const OutputSettings& o, double end) {
 // ~2e-9 N), so a residual that stagnates while the corrections are below
 //   correction  kCorrection V^(1/3)                      (m: 1e-7 of the body size, nanometres)
 // is accepted as converged at round-off (solver::NewtonSettings::correction_tolerance).
-solver::NewtonSettings newton_settings(const SolverSettings& s, const IgaModel& model) {
+solver::NewtonSettings newton_settings(const SolverSettings& s, const RunModel& model) {
   solver::NewtonSettings n;
   n.max_iterations = s.newton_max_iterations;
   n.relative_residual_tolerance = s.tolerance_residual;
@@ -155,8 +155,8 @@ solver::NewtonSettings newton_settings(const SolverSettings& s, const IgaModel& 
                                                                  : solver::LinearMethod::Lu;
   n.linear.lu_fallback = true;
   n.linear.blas_threads = s.blas_threads;
-  const double volume = model.space->reference_volume();
-  const double modulus = std::max(model.law->bulk_modulus(), model.law->shear_modulus());
+  const double volume = model.reference_volume();
+  const double modulus = model.modulus_scale();
   const double eps = std::numeric_limits<double>::epsilon();
   n.absolute_residual_tolerance = kFloor * eps * modulus * std::cbrt(volume * volume);
   n.absolute_energy_tolerance =
@@ -181,26 +181,6 @@ solver::TimeStepperSettings stepper_settings(const TimeSettings& t,
   return s;
 }
 
-// Largest |u| over the tessellation points of the committed state (m).
-double max_displacement(const iga::Problem& problem, int samples) {
-  const iga::Tessellation t = problem.tessellate(problem.committed_displacement(), samples);
-  double m = 0.0;
-  for (const Eigen::Vector3d& u : t.displacement)
-    m = std::max(m, u.norm());
-  return m;
-}
-
-// The control-point displacements of the committed state (solution_file.hpp): merged control
-// points repeat their node's value.
-DisplacementRows control_displacements(const iga::Problem& problem) {
-  const iga::DofMap& dofs = problem.dofs();
-  const Eigen::VectorXd& u = problem.committed_displacement();
-  DisplacementRows rows(dofs.num_control_points(), 3);
-  for (int a = 0; a < dofs.num_control_points(); ++a)
-    rows.row(a) = u.segment<3>(3 * dofs.node(a)).transpose();
-  return rows;
-}
-
 void copy_scene(const Scene& scene, const fs::path& out_dir) {
   std::error_code ec;
   if (!scene.file.empty() && fs::is_regular_file(scene.file, ec) &&
@@ -211,8 +191,8 @@ void copy_scene(const Scene& scene, const fs::path& out_dir) {
 
 }  // namespace
 
-// Set-up, stepping and outputs of one scene (see iga_run.hpp); reads top to bottom.
-RunResult run_iga(const Scene& scene, const RunOptions& options) {
+// Set-up, stepping and outputs of one scene (see scene_run.hpp); reads top to bottom.
+RunResult run_scene(const Scene& scene, const RunOptions& options) {
   const Clock::time_point start = Clock::now();
   const auto log = [&](const std::string& line) {
     if (options.log)
@@ -231,7 +211,7 @@ RunResult run_iga(const Scene& scene, const RunOptions& options) {
 
   RunSummary& s = result.summary;
   s.scene = scene.file.string();
-  s.discretisation = "iga";
+  s.discretisation = to_string(scene.discretisation);
   s.linear_solver = to_string(scene.solver.linear_solver);
   s.extra["version"] = kVersion;
   s.extra["description"] = scene.description;
@@ -249,26 +229,17 @@ RunResult run_iga(const Scene& scene, const RunOptions& options) {
     return result;
   };
 
-  // ---- Set-up: geometry, space, law, conditions, problem, output files. ----
-  IgaModel model;
-  std::unique_ptr<IgaProbes> probes;
-  std::unique_ptr<IgaFieldOutput> fields;
-  std::unique_ptr<SolutionWriter> solution;
+  // ---- Set-up: geometry, discretisation, law, conditions, problem, output files. ----
+  std::unique_ptr<RunModel> model;
   std::unique_ptr<CsvWriter> probe_csv, newton_csv;
   const std::vector<double> out_times = output_times(scene.output, scene.time.end);
   try {
     ScopedSeconds timer(wall.setup);
-    model = build_iga_model(scene, threads);
-    probes = std::make_unique<IgaProbes>(scene.probes, model);
-    if (!scene.output.fields.empty()) {
-      fields =
-          std::make_unique<IgaFieldOutput>(options.out_dir / "fields.xdmf", scene.output.fields,
-                                           scene.output.samples_per_element, model.fibre_spec);
-    }
-    solution = std::make_unique<SolutionWriter>(options.out_dir / "solution.h5", model.unrefined,
-                                                model.space->volume());
+    model = scene.discretisation == Discretisation::iga
+                ? make_iga_run_model(scene, threads, options.out_dir)
+                : make_tet_run_model(scene, threads, options.out_dir);
     std::vector<std::string> columns{"time", "step", "dt", "newton_iterations"};
-    columns.insert(columns.end(), probes->columns().begin(), probes->columns().end());
+    columns.insert(columns.end(), model->probe_columns().begin(), model->probe_columns().end());
     probe_csv = std::make_unique<CsvWriter>(options.out_dir / "probes.csv", columns);
     newton_csv = std::make_unique<CsvWriter>(
         options.out_dir / "newton.csv",
@@ -279,37 +250,16 @@ RunResult run_iga(const Scene& scene, const RunOptions& options) {
     result.setup_failed = true;
     return finish(std::string("set-up failed: ") + e.what());
   }
-  iga::Problem& problem = *model.problem;
-  const iga::Space& space = *model.space;
-  for (int d = 0; d < 3; ++d)
-    s.degrees.push_back(space.volume().degree(d));
-  s.elements = static_cast<std::size_t>(space.num_elements());
-  s.dofs = static_cast<std::size_t>(model.dofs->num_dofs());
-  s.volume_initial_m3 = space.reference_volume();
-  s.extra["free_dofs"] = problem.size();
-  s.extra["control_points"] = model.dofs->num_control_points();
-  s.extra["nodes"] = model.dofs->num_nodes();
-  s.extra["quadrature_points"] = space.num_points();
-  s.extra["formulation"] = iga::to_string(problem.formulation());
+  solver::NonlinearProblem& problem = model->problem();
+  model->describe(s);
   s.extra["fibres"] = to_string(scene.fibres.mode);
-  const char* solid_names = "uvw";
-  s.extra["parametric_frame"] =
-      Json{{"scene_u_is_solid", std::string(1, solid_names[model.frame.solid_direction[0]])},
-           {"scene_v_is_solid", std::string(1, solid_names[model.frame.solid_direction[1]])},
-           {"around_centreline_reversed", model.frame.reversed[0]}};
-  for (const auto& note : probes->notes())
-    model.notes.push_back(note);
-  s.extra["notes"] = model.notes;
+  s.extra["notes"] = model->notes();
   Json probe_points = Json::object();
-  for (const auto& [name, X] : probes->points())
+  for (const auto& [name, X] : model->probe_points())
     probe_points[name] = {X.x(), X.y(), X.z()};
   s.extra["probe_points"] = probe_points;
-  log("set-up: " + std::to_string(space.num_elements()) + " elements of degree (" +
-      std::to_string(s.degrees[0]) + ", " + std::to_string(s.degrees[1]) + ", " +
-      std::to_string(s.degrees[2]) + "), " + std::to_string(model.dofs->num_nodes()) + " nodes, " +
-      std::to_string(problem.size()) + " unknowns, " + iga::to_string(problem.formulation()) +
-      " formulation, law " + model.law->name() + ", " + format_seconds(wall.setup) + " s");
-  for (const auto& note : model.notes)
+  log("set-up: " + model->setup_line() + ", " + format_seconds(wall.setup) + " s");
+  for (const auto& note : model->notes())
     log("note: " + note);
 
   // ---- Stepping with outputs after every converged step. ----
@@ -324,14 +274,14 @@ RunResult run_iga(const Scene& scene, const RunOptions& options) {
   std::optional<solver::TimeStepper> stepper;
   solver::TimeStepperResult stepped;
   try {
-    stepper.emplace(stepper_settings(scene.time, out_times), newton_settings(scene.solver, model));
-    if (fields && !out_times.empty() && out_times.front() <= 0.0) {
+    stepper.emplace(stepper_settings(scene.time, out_times), newton_settings(scene.solver, *model));
+    if (!out_times.empty() && out_times.front() <= 0.0) {
       ScopedSeconds timer(wall.output);
-      fields->write(problem);  // the reference state at t = 0
+      model->write_fields();  // the reference state at t = 0
     }
     SteppedProblem stepped_problem(problem, [&](const Eigen::VectorXd& converged) {
       ScopedSeconds timer(wall.output);
-      probes->before_commit(problem, converged);
+      model->before_commit(converged);
     });
     const auto on_step = [&](const solver::StepInfo& info, const Eigen::VectorXd&) {
       ScopedSeconds timer(wall.output);
@@ -349,16 +299,15 @@ RunResult run_iga(const Scene& scene, const RunOptions& options) {
              it.relative_energy, it.step_length, static_cast<double>(it.line_search_halvings),
              it.rcond, it.lu_fallback ? 1.0 : 0.0});
       }
-      probes->values(problem, probe_row);
+      model->probe_values(probe_row);
       std::vector<double> row{r.time, static_cast<double>(r.step), r.dt,
                               static_cast<double>(r.newton_iterations)};
       row.insert(row.end(), probe_row.begin(), probe_row.end());
       probe_csv->write_row(row);
       last_probes = probe_row;
       if (every_step || r.output_time) {
-        if (fields)
-          fields->write(problem);
-        solution->write_step(problem.committed_time(), control_displacements(problem));
+        model->write_fields();
+        model->write_solution();
       }
       if (options.progress) {
         const solver::NewtonStatistics& ns = stepper->newton().statistics();
@@ -371,12 +320,12 @@ RunResult run_iga(const Scene& scene, const RunOptions& options) {
     if (!stepped.completed)
       failure = stepped.message;
   } catch (const std::exception& e) {
-    failure = "at t = " + std::to_string(problem.committed_time()) + " s (after " +
+    failure = "at t = " + std::to_string(model->committed_time()) + " s (after " +
               std::to_string(steps) + " converged steps): " + e.what();
   }
 
   // ---- Summary: statistics, timings, key results of the last converged state. ----
-  result.time_reached = problem.committed_time();
+  result.time_reached = model->committed_time();
   s.steps = static_cast<std::size_t>(steps);
   for (const solver::StepCut& c : stepped.cuts) {
     s.step_cuts.push_back(StepCut{c.time, c.dt, c.next_dt, c.reason});
@@ -409,25 +358,27 @@ RunResult run_iga(const Scene& scene, const RunOptions& options) {
                              {"tangent_evaluations", ns.tangent_evaluations}};
   }
   s.extra["time"] = Json{{"end", scene.time.end}, {"reached", result.time_reached}};
-  s.extra["outputs"] = Json{{"fields", fields ? Json("fields.xdmf") : Json(nullptr)},
-                            {"field_steps", fields ? fields->writer().steps() : 0},
-                            {"solution", "solution.h5"},
-                            {"probes", "probes.csv"},
-                            {"newton_log", "newton.csv"}};
+  s.extra["outputs"] =
+      Json{{"fields", model->field_steps() > 0 ? Json("fields.xdmf") : Json(nullptr)},
+           {"field_steps", model->field_steps()},
+           {"solution", "solution.h5"},
+           {"probes", "probes.csv"},
+           {"newton_log", "newton.csv"}};
   try {
     ScopedSeconds timer(wall.output);
     // The last converged state is always in solution.h5 (for comparisons), also when it is not an
     // output time (a failed run).
-    if (steps > 0 && (solution->steps() == 0 || solution->last_time() < problem.committed_time()))
-      solution->write_step(problem.committed_time(), control_displacements(problem));
-    s.volume_final_m3 = problem.current_volume(problem.committed_displacement());
-    s.max_displacement_m = max_displacement(problem, scene.output.samples_per_element);
+    if (steps > 0 &&
+        (model->solution_steps() == 0 || model->solution_last_time() < model->committed_time()))
+      model->write_solution();
+    s.volume_final_m3 = model->current_volume();
+    s.max_displacement_m = model->max_displacement();
   } catch (const std::exception& e) {
     if (failure.empty())
       failure = std::string("final results: ") + e.what();
   }
-  for (std::size_t i = 0; i < probes->columns().size(); ++i) {
-    s.probes[probes->columns()[i]] =
+  for (std::size_t i = 0; i < model->probe_columns().size(); ++i) {
+    s.probes[model->probe_columns()[i]] =
         last_probes ? std::optional<double>((*last_probes)[i]) : std::nullopt;
   }
   return finish(failure);

@@ -1,9 +1,11 @@
 #pragma once
-// One isogeometric run of a scene, from the IGES file to a results folder (DESIGN "What the user
-// does"; `isomuscle run SCENE.toml`):
+// One run of a scene, from the IGES file to a results folder (DESIGN "What the user does";
+// `isomuscle run SCENE.toml`), on either discretisation (run_model.hpp):
 //
-//   set-up   iga_run_setup.hpp: IGES -> shrink solid -> refinement -> space, DOFs, fibres, law,
-//            boundary conditions -> iga::Problem
+//   set-up   discretisation = "iga" (iga_run_setup.hpp): IGES -> shrink solid -> refinement ->
+//            space, DOFs, fibres, law, boundary conditions -> iga::Problem; "tet"
+//            (tet_run_setup.hpp): the same solid, the IGES boundary meshed by gmsh -> tetrahedra,
+//            fibres by point inversion of the solid, law, conditions -> tet::TetProblem
 //   stepping solver::TimeStepper over [0, time.end] with Newton (scene [solver]), steps landing on
 //            every output time, cut back on failure down to time.dt_min
 //   outputs  after every converged step: a row of probes.csv (iga_run_probes.hpp) and the step's
@@ -67,6 +69,6 @@ struct RunResult {
 // Runs the scene (already validated, e.g. by load_scene). Never throws for problems of the model
 // or the run: they end in RunResult (converged = false) and summary.json. Throws std::runtime_error
 // only when the output folder cannot be created or summary.json cannot be written.
-RunResult run_iga(const Scene& scene, const RunOptions& options);
+RunResult run_scene(const Scene& scene, const RunOptions& options);
 
 }  // namespace isomuscle::io

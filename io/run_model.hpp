@@ -1,0 +1,54 @@
+#pragma once
+// What the stepping loop of a run (scene_run.hpp) needs from a discretisation: the discrete
+// problem, the scales of its Newton floors, the probes, the field and solution output, and the
+// key results of the committed state. Implemented by the isogeometric model (iga_run_model.hpp)
+// and the tetrahedral one (tet_run_model.hpp), so that both runs step, log, cut back and write
+// their folders in exactly the same way.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "io/run_summary.hpp"
+#include "solver/nonlinear_problem.hpp"
+
+namespace isomuscle::io {
+
+class RunModel {
+ public:
+  virtual ~RunModel() = default;
+
+  // The problem stepped in time (its predict() is used while there is no velocity to extrapolate).
+  virtual solver::NonlinearProblem& problem() = 0;
+  // Scales of the round-off floors of the Newton tolerances: the reference volume (m^3) and the
+  // largest modulus of the law, max(kappa, mu) (Pa).
+  virtual double reference_volume() const = 0;
+  virtual double modulus_scale() const = 0;
+
+  // Sizes and discretisation-specific keys written into the summary at set-up, one log line that
+  // says what was built, and the decisions a user should know about.
+  virtual void describe(RunSummary& summary) const = 0;
+  virtual std::string setup_line() const = 0;
+  virtual const std::vector<std::string>& notes() const = 0;
+
+  // Probes (probes.csv): the columns, a hook on the converged free values before they are
+  // committed (reactions, pre-step histories), the values of the committed state.
+  virtual const std::vector<std::string>& probe_columns() const = 0;
+  virtual void before_commit(const Eigen::VectorXd& u) = 0;
+  virtual void probe_values(std::vector<double>& out) = 0;
+  // Reference position (m) of every point probe, by name.
+  virtual std::vector<std::pair<std::string, Eigen::Vector3d>> probe_points() const = 0;
+
+  // Output of the committed state: fields.xdmf (when fields were asked for) and solution.h5.
+  virtual void write_fields() = 0;
+  virtual std::size_t field_steps() const = 0;  // 0 when no fields are written
+  virtual void write_solution() = 0;
+  virtual std::size_t solution_steps() const = 0;
+  virtual double solution_last_time() const = 0;  // s
+
+  // The committed state.
+  virtual double committed_time() const = 0;
+  virtual double current_volume() const = 0;    // m^3
+  virtual double max_displacement() const = 0;  // m, over the output points
+};
+
+}  // namespace isomuscle::io

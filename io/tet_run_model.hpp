@@ -1,0 +1,18 @@
+#pragma once
+// The tetrahedral discretisation of a scene as a RunModel (run_model.hpp): the model of
+// tet_run_setup.hpp with its probes (tet_run_probes.hpp), fields (tet_run_fields.hpp) and
+// solution.h5 (solution_file.hpp).
+#include <filesystem>
+#include <memory>
+
+#include "io/run_model.hpp"
+#include "io/scene.hpp"
+
+namespace isomuscle::io {
+
+// Builds the model (meshing the IGES boundary) and opens its output files in out_dir. Throws
+// (std::runtime_error, std::invalid_argument) with a message naming the setting at fault.
+std::unique_ptr<RunModel> make_tet_run_model(const Scene& scene, int threads,
+                                             const std::filesystem::path& out_dir);
+
+}  // namespace isomuscle::io
