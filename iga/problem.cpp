@@ -92,17 +92,6 @@ Problem::Problem(const Space& space, const DofMap& dofs, const materials::Materi
 
 Problem::~Problem() = default;
 
-void Problem::MixedBaseStorage::resize(int nel, int m, int n) {
-  const std::size_t e = static_cast<std::size_t>(nel);
-  ue.assign(e * n, 0.0);
-  theta.assign(e * m, 0.0);
-  pi.assign(e * m, 0.0);
-  R_pi.assign(e * m, 0.0);
-  R_theta.assign(e * m, 0.0);
-  G.assign(e * m * n, 0.0);
-  K_JJ.assign(e * m * m, 0.0);
-}
-
 void Problem::set_threads(int threads) {
   if (threads < 0) {
     throw std::invalid_argument("threads must be >= 0 (0 = OpenMP default)");
@@ -158,8 +147,6 @@ solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool w
   const bool mixed = formulation_ == Formulation::mixed;
   const bool from_base = mixed && use_base && base_valid_;
   const bool store_base = mixed && want_tangent;
-  const std::size_t m = mixed ? static_cast<std::size_t>(pressure_.size()) : 0;
-  const std::size_t n = 3 * static_cast<std::size_t>(space_.functions_per_element());
   const std::size_t hs = static_cast<std::size_t>(history_size_);
   auto body = [&](int e, int thread) -> solver::EvaluationStatus {
     ElementWorkspace& ws = workspaces_[thread];
@@ -171,32 +158,15 @@ solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool w
         law_, fibres_, e, nqp, time_, dt_, history_committed_,
         history_trial_.data() + static_cast<std::size_t>(e) * nqp * hs);
     const ElementView view = element_view(space_, e);
-    const std::size_t E = static_cast<std::size_t>(e);
-    MixedBase base;
-    if (from_base) {
-      base.ue = base_.ue.data() + E * n;
-      base.theta = base_.theta.data() + E * m;
-      base.pi = base_.pi.data() + E * m;
-      base.R_pi = base_.R_pi.data() + E * m;
-      base.R_theta = base_.R_theta.data() + E * m;
-      base.G = base_.G.data() + E * m * n;
-      base.K_JJ = base_.K_JJ.data() + E * m * m;
-    }
+    const MixedBase base = from_base ? base_.view(e) : MixedBase{};
     const KernelStatus ks =
         mixed ? mixed_kernel(view, ctx, pressure_, e, from_base ? &base : nullptr, want_tangent, ws)
               : displacement_kernel(view, ctx, want_tangent, ws);
     if (!ks.ok()) {
       return solver::EvaluationStatus::failure(describe_failure(e, ks));
     }
-    if (store_base) {
-      std::copy_n(ws.ue.data(), n, next_base_.ue.data() + E * n);
-      std::copy_n(ws.theta.data(), m, next_base_.theta.data() + E * m);
-      std::copy_n(ws.pi.data(), m, next_base_.pi.data() + E * m);
-      std::copy_n(ws.R_pi.data(), m, next_base_.R_pi.data() + E * m);
-      std::copy_n(ws.R_theta.data(), m, next_base_.R_theta.data() + E * m);
-      std::copy_n(ws.G.data(), m * n, next_base_.G.data() + E * m * n);
-      std::copy_n(ws.K_JJ.data(), m * m, next_base_.K_JJ.data() + E * m * m);
-    }
+    if (store_base)
+      next_base_.store(e, ws);
     const auto& all = element_all_dofs_[e];
     for (std::size_t i = 0; i < all.size(); ++i) {
       f_int_[all[i]] += ws.fe[static_cast<Eigen::Index>(i)];
@@ -294,39 +264,24 @@ solver::EvaluationStatus Problem::predict(Eigen::VectorXd& u) {
   Eigen::VectorXd new_full;
   constraints_.expand(u, time_, new_full);
   const Eigen::VectorXd increment = new_full - old_full;  // zero on the free DOFs
-  if (!pattern_.matches(predictor_matrix_)) {
-    predictor_matrix_ = pattern_.make_matrix();
-  } else {
-    std::fill(predictor_matrix_.valuePtr(),
-              predictor_matrix_.valuePtr() + predictor_matrix_.nonZeros(), 0.0);
-  }
+  solver::SparseMatrix& matrix = predictor_.zeroed_matrix(pattern_);
   Eigen::VectorXd K_increment;
   trial_valid_ = false;
   base_valid_ = false;
   const solver::EvaluationStatus status =
-      assemble(old_full, true, predictor_matrix_.valuePtr(), false, &increment, &K_increment);
+      assemble(old_full, true, matrix.valuePtr(), false, &increment, &K_increment);
   if (!status.ok) {
     base_valid_ = false;
     return solver::EvaluationStatus::failure("predictor: " + status.message);
-  }
-  if (!predictor_solver_) {
-    solver::LinearSolverSettings settings;
-    settings.storage = options_.storage;
-    predictor_solver_ = std::make_unique<solver::LinearSolver>(settings);
-  }
-  const solver::FactorizationReport report = predictor_solver_->factorize(predictor_matrix_);
-  if (!report.ok) {
-    base_valid_ = false;
-    return solver::EvaluationStatus::failure("predictor: " + report.message);
   }
   const Eigen::VectorXd full_rhs = f_int_ + K_increment - f_ext_;
   Eigen::VectorXd rhs;
   constraints_.restrict_to_free(full_rhs, rhs);
   Eigen::VectorXd du;
-  predictor_solver_->solve(-rhs, du);
-  if (!du.allFinite()) {
+  const solver::EvaluationStatus solved = predictor_.solve(options_.storage, -rhs, du);
+  if (!solved.ok) {
     base_valid_ = false;
-    return solver::EvaluationStatus::failure("predictor: non-finite increment");
+    return solved;
   }
   u += du;
   return solver::EvaluationStatus::success();

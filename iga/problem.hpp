@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "continuum/formulation.hpp"
+#include "continuum/mixed_base_storage.hpp"
 #include "continuum/point_state.hpp"
 #include "iga/boundary_conditions.hpp"
 #include "iga/dof_map.hpp"
@@ -34,6 +35,7 @@
 #include "solver/linear_solver.hpp"
 #include "solver/matrix_storage.hpp"
 #include "solver/nonlinear_problem.hpp"
+#include "solver/predictor_system.hpp"
 #include "solver/sparsity_pattern.hpp"
 
 namespace isomuscle::iga {
@@ -188,17 +190,12 @@ class Problem : public solver::NonlinearProblem {
   Eigen::VectorXd committed_full_;
   Eigen::VectorXd committed_free_;
   Eigen::VectorXd last_u_;  // free values of the last successful evaluation (trial history)
-  // Mixed formulation: per element base state of the last tangent evaluation (blocks of n = 3 n_en
-  // or m doubles, G m x n, K_JJ m x m); written to next_ during a tangent assembly and swapped in
-  // when the whole assembly succeeded.
-  struct MixedBaseStorage {
-    std::vector<double> ue, theta, pi, R_pi, R_theta, G, K_JJ;
-    void resize(int nel, int m, int n);
-  };
-  MixedBaseStorage base_, next_base_;
+  // Mixed formulation: per element base state of the last tangent evaluation
+  // (continuum/mixed_base_storage.hpp), written to next_base_ during a tangent assembly and
+  // swapped in when the whole assembly succeeded.
+  continuum::MixedBaseStorage base_, next_base_;
   bool base_valid_ = false;
-  std::unique_ptr<solver::LinearSolver> predictor_solver_;
-  solver::SparseMatrix predictor_matrix_;
+  solver::PredictorSystem predictor_;
   double last_time_ = 0.0;
   bool trial_valid_ = false;
 };

@@ -100,6 +100,10 @@ TetProblem::TetProblem(const TetSpace& space, const materials::MaterialLaw& law,
     }
   }
   workspaces_.assign(solver::resolve_thread_count(options_.threads), ElementWorkspace(nen, nqp, m));
+  if (formulation_ == Formulation::mixed) {
+    base_.resize(space_.num_elements(), m, 3 * nen);
+    next_base_.resize(space_.num_elements(), m, 3 * nen);
+  }
   history_size_ = law_.history_size();
   history_committed_.assign(static_cast<std::size_t>(space_.num_points()) * history_size_, 0.0);
   for (int i = 0; history_size_ > 0 && i < space_.num_points(); ++i) {
@@ -122,6 +126,7 @@ void TetProblem::begin_step(double time, double dt) {
   time_ = time;
   dt_ = dt;
   trial_valid_ = false;
+  base_valid_ = false;  // the first iterate of a step projects exactly
   const TetMesh& mesh = space_.mesh();
   prescribed_.setZero(3 * mesh.num_nodes());
   for (const TetDirichlet& c : conditions_) {
@@ -175,7 +180,8 @@ std::string TetProblem::describe_failure(int e, const KernelStatus& s) const {
 // The element's data as a continuum::ElementView; the mixed kernel also gets phi at the points
 // and M_e (tet_problem.hpp), the displacement kernel F S only (continuum/element_kernels.hpp).
 KernelStatus TetProblem::element_kernel(int e, const MaterialContext& ctx, bool tangent,
-                                        ElementWorkspace& ws) const {
+                                        ElementWorkspace& ws,
+                                        const continuum::MixedBase* base) const {
   ElementView view;
   view.nen = space_.nodes_per_element();
   view.nqp = space_.points_per_element();
@@ -186,13 +192,20 @@ KernelStatus TetProblem::element_kernel(int e, const MaterialContext& ctx, bool 
   }
   view.pressure_size = pressure_size_;
   view.pressure = pressure_values_.data() + static_cast<std::size_t>(e) * view.nqp * pressure_size_;
-  return continuum::mixed_kernel(view, ctx, mass_[e], mass_matrix_[e], nullptr, tangent, ws);
+  return continuum::mixed_kernel(view, ctx, mass_[e], mass_matrix_[e], base, tangent, ws);
 }
 
 // Element loop: kernel per element into the thread's workspace, scatter by colour (DESIGN 2, 5).
 solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, bool want_tangent,
-                                              double* values) {
+                                              double* values, bool use_base,
+                                              const Eigen::VectorXd* increment,
+                                              Eigen::VectorXd* K_increment) {
   f_int_.setZero(u_full.size());
+  if (K_increment != nullptr)
+    K_increment->setZero(u_full.size());
+  const bool mixed = formulation_ == Formulation::mixed;
+  const bool from_base = mixed && use_base && base_valid_;
+  const bool store_base = mixed && want_tangent;
   const int nqp = space_.points_per_element();
   const int nen = space_.nodes_per_element();
   const std::size_t hs = static_cast<std::size_t>(history_size_);
@@ -205,20 +218,38 @@ solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, boo
     const MaterialContext ctx = continuum::element_material_context(
         law_, fibres_, e, nqp, time_, dt_, history_committed_,
         history_trial_.data() + static_cast<std::size_t>(e) * nqp * hs);
-    const KernelStatus ks = element_kernel(e, ctx, want_tangent, ws);
+    const continuum::MixedBase base = from_base ? base_.view(e) : continuum::MixedBase{};
+    const KernelStatus ks = element_kernel(e, ctx, want_tangent, ws, from_base ? &base : nullptr);
     if (!ks.ok()) {
       return solver::EvaluationStatus::failure(describe_failure(e, ks));
     }
+    if (store_base)
+      next_base_.store(e, ws);
     const auto& dofs = element_dofs_[e];
     for (std::size_t i = 0; i < dofs.size(); ++i) {
       f_int_[dofs[i]] += ws.fe[static_cast<Eigen::Index>(i)];
     }
     if (want_tangent) {
       pattern_.add_element_matrix(e, ws.ke, values);
+      if (increment != nullptr) {
+        for (std::size_t j = 0; j < dofs.size(); ++j) {
+          const double d = (*increment)[dofs[j]];
+          if (d != 0.0)
+            for (std::size_t i = 0; i < dofs.size(); ++i)
+              (*K_increment)[dofs[i]] +=
+                  ws.ke(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) * d;
+        }
+      }
     }
     return solver::EvaluationStatus::success();
   };
-  return solver::for_each_element_coloured(colouring_, options_.threads, body);
+  const solver::EvaluationStatus status =
+      solver::for_each_element_coloured(colouring_, options_.threads, body);
+  if (status.ok && store_base) {
+    std::swap(base_, next_base_);
+    base_valid_ = true;
+  }
+  return status;
 }
 
 // r = f_int(u) - f_ext(t) on the free DOFs, K = dr/du (NonlinearProblem::evaluate).
@@ -239,7 +270,7 @@ solver::EvaluationStatus TetProblem::evaluate(const Eigen::VectorXd& u, Eigen::V
     }
     values = tangent->valuePtr();
   }
-  const solver::EvaluationStatus status = assemble(u_full_, tangent != nullptr, values);
+  const solver::EvaluationStatus status = assemble(u_full_, tangent != nullptr, values, true);
   if (!status.ok) {
     return status;
   }
@@ -271,9 +302,49 @@ void TetProblem::commit_step(const Eigen::VectorXd& u) {
   }
   history_previous_.swap(history_committed_);
   history_committed_ = history_trial_;
+  base_valid_ = false;
   committed_full_ = full_displacement(u);
   committed_time_ = time_;
   committed_dt_ = dt_;
+}
+
+// K_ff du_f = -(f_int(u_n) + K_fp du_p - f_ext(t_n+1))_f at the committed state (header).
+solver::EvaluationStatus TetProblem::predict(Eigen::VectorXd& u) {
+  if (u.size() != size()) {
+    throw std::invalid_argument("TetProblem::predict: vector of size " + std::to_string(u.size()) +
+                                ", expected " + std::to_string(size()));
+  }
+  if (size() == 0)
+    return solver::EvaluationStatus::success();
+  Eigen::VectorXd old_full = committed_full_;
+  for (int d = 0; d < old_full.size(); ++d)
+    if (free_index_[d] >= 0)
+      old_full[d] = u[free_index_[d]];
+  const Eigen::VectorXd increment = full_displacement(u) - old_full;  // zero on free DOFs
+  if (increment.lpNorm<Eigen::Infinity>() == 0.0)
+    return solver::EvaluationStatus::success();  // nothing prescribed moves: Newton predicts
+  solver::SparseMatrix& matrix = predictor_.zeroed_matrix(pattern_);
+  Eigen::VectorXd K_increment;
+  trial_valid_ = false;
+  base_valid_ = false;
+  const solver::EvaluationStatus status =
+      assemble(old_full, true, matrix.valuePtr(), false, &increment, &K_increment);
+  if (!status.ok) {
+    base_valid_ = false;
+    return solver::EvaluationStatus::failure("predictor: " + status.message);
+  }
+  Eigen::VectorXd rhs(num_free_);
+  for (int d = 0; d < f_int_.size(); ++d)
+    if (free_index_[d] >= 0)
+      rhs[free_index_[d]] = -(f_int_[d] + K_increment[d] - f_ext_[d]);
+  Eigen::VectorXd du;
+  const solver::EvaluationStatus solved = predictor_.solve(options_.storage, rhs, du);
+  if (!solved.ok) {
+    base_valid_ = false;
+    return solved;
+  }
+  u += du;
+  return solver::EvaluationStatus::success();
 }
 
 solver::EvaluationStatus TetProblem::internal_force(const Eigen::VectorXd& u,
@@ -284,7 +355,7 @@ solver::EvaluationStatus TetProblem::internal_force(const Eigen::VectorXd& u,
   }
   trial_valid_ = false;
   u_full_ = full_displacement(u);
-  const solver::EvaluationStatus status = assemble(u_full_, false, nullptr);
+  const solver::EvaluationStatus status = assemble(u_full_, false, nullptr, false);
   if (status.ok) {
     f_int = f_int_;
     last_u_ = u;

@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -22,11 +23,14 @@
 
 #include "continuum/element_kernels.hpp"
 #include "continuum/formulation.hpp"
+#include "continuum/mixed_base_storage.hpp"
 #include "continuum/point_state.hpp"
 #include "materials/material_law.hpp"
 #include "solver/element_colouring.hpp"
+#include "solver/linear_solver.hpp"
 #include "solver/matrix_storage.hpp"
 #include "solver/nonlinear_problem.hpp"
+#include "solver/predictor_system.hpp"
 #include "solver/sparsity_pattern.hpp"
 #include "tet/tet_space.hpp"
 
@@ -86,6 +90,11 @@ class TetProblem : public solver::NonlinearProblem {
   solver::EvaluationStatus evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& residual,
                                     solver::SparseMatrix* tangent) override;
   void commit_step(const Eigen::VectorXd& u) override;
+  // The linearised Dirichlet predictor of iga::Problem::predict: from the committed state with its
+  // tangent, K_ff du_f = -(f_int(u_n) + K_fp du_p - f_ext)_f for the prescribed increment du_p of
+  // the step, u <- u + du_f, so the first iterate does not squeeze the whole increment into the
+  // elements next to a moved face. u holds the committed free values; unchanged on failure.
+  solver::EvaluationStatus predict(Eigen::VectorXd& u) override;
 
   Formulation formulation() const { return formulation_; }  // resolved, never automatic
   const TetSpace& space() const { return space_; }
@@ -118,11 +127,17 @@ class TetProblem : public solver::NonlinearProblem {
   Eigen::Vector3d sum_over_nodes(const Eigen::VectorXd& f_full, std::span<const int> nodes) const;
 
  private:
+  // use_base: mixed formulation, update p~, J~ from the base of the last tangent evaluation
+  // (when there is one) instead of projecting exactly (continuum/mixed_base_storage.hpp).
+  // With increment (all DOFs), also K_increment = K_all increment element by element.
   solver::EvaluationStatus assemble(const Eigen::VectorXd& u_full, bool want_tangent,
-                                    double* values);
-  // Element e's kernel (displacement or mixed, by formulation_) at ws.ue into ws.
-  KernelStatus element_kernel(int e, const MaterialContext& ctx, bool tangent,
-                              ElementWorkspace& ws) const;
+                                    double* values, bool use_base,
+                                    const Eigen::VectorXd* increment = nullptr,
+                                    Eigen::VectorXd* K_increment = nullptr);
+  // Element e's kernel (displacement or mixed, by formulation_) at ws.ue into ws; base: the
+  // element's mixed base or nullptr (exact projection).
+  KernelStatus element_kernel(int e, const MaterialContext& ctx, bool tangent, ElementWorkspace& ws,
+                              const continuum::MixedBase* base = nullptr) const;
   std::string describe_failure(int e, const KernelStatus& s) const;
 
   const TetSpace& space_;
@@ -150,6 +165,11 @@ class TetProblem : public solver::NonlinearProblem {
   Eigen::VectorXd prescribed_;  // full vector: prescribed values at time_, zero elsewhere
   Eigen::VectorXd f_ext_, f_int_, u_full_, committed_full_, last_u_;
   bool trial_valid_ = false;
+  // Mixed formulation: the per-element base of the last tangent evaluation, valid within a step
+  // (the first iterate of a step projects exactly, as iga::Problem does).
+  continuum::MixedBaseStorage base_, next_base_;
+  bool base_valid_ = false;
+  solver::PredictorSystem predictor_;
 };
 
 }  // namespace isomuscle::tet

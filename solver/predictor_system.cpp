@@ -1,0 +1,31 @@
+#include "solver/predictor_system.hpp"
+
+#include <algorithm>
+
+namespace isomuscle::solver {
+
+SparseMatrix& PredictorSystem::zeroed_matrix(const SparsityPattern& pattern) {
+  if (!pattern.matches(matrix_))
+    matrix_ = pattern.make_matrix();
+  else
+    std::fill(matrix_.valuePtr(), matrix_.valuePtr() + matrix_.nonZeros(), 0.0);
+  return matrix_;
+}
+
+EvaluationStatus PredictorSystem::solve(MatrixStorage storage, const Eigen::VectorXd& rhs,
+                                        Eigen::VectorXd& du) {
+  if (!solver_) {
+    LinearSolverSettings settings;
+    settings.storage = storage;
+    solver_ = std::make_unique<LinearSolver>(settings);
+  }
+  const FactorizationReport report = solver_->factorize(matrix_);
+  if (!report.ok)
+    return EvaluationStatus::failure("predictor: " + report.message);
+  solver_->solve(rhs, du);
+  if (!du.allFinite())
+    return EvaluationStatus::failure("predictor: non-finite increment");
+  return EvaluationStatus::success();
+}
+
+}  // namespace isomuscle::solver
