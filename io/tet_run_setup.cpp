@@ -7,6 +7,7 @@
 #include "io/setting_check.hpp"
 #include "tet/tet_fibres.hpp"
 #include "tet/tet_meshing.hpp"
+#include "tet/tet_surface_loads.hpp"
 
 namespace isomuscle::io {
 

@@ -13,8 +13,11 @@
 //   symmetry         u . n = 0 on the selected nodes, for a plane whose normal is a coordinate
 //                    axis (the constraint is then one component).
 //
+//   [[load]]         the traction on the boundary triangles whose nodes all lie on the face
+//                    (tet/tet_surface_loads.hpp).
+//
 // Not offered on tetrahedra (a clear error at set-up): [geometry] extract (gmsh meshes the whole
-// IGES shape), construction = "extrude" (an open sheet bounds no volume for gmsh), [[load]]s.
+// IGES shape), construction = "extrude" (an open sheet bounds no volume for gmsh).
 #include <Eigen/Core>
 #include <memory>
 #include <string>

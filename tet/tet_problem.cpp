@@ -153,6 +153,7 @@ void TetProblem::begin_step(double time, double dt) {
       }
     }
   }
+  add_surface_loads(mesh, surface_loads_, time_, f_ext_);
 }
 
 Eigen::VectorXd TetProblem::full_displacement(const Eigen::VectorXd& u) const {

@@ -33,6 +33,7 @@
 #include "solver/predictor_system.hpp"
 #include "solver/sparsity_pattern.hpp"
 #include "tet/tet_space.hpp"
+#include "tet/tet_surface_loads.hpp"
 
 namespace isomuscle::tet {
 
@@ -90,6 +91,8 @@ class TetProblem : public solver::NonlinearProblem {
   solver::EvaluationStatus evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& residual,
                                     solver::SparseMatrix* tangent) override;
   void commit_step(const Eigen::VectorXd& u) override;
+  // Dead surface tractions (tet_surface_loads.hpp), added to f_ext from the next begin_step on.
+  void set_surface_loads(std::vector<TetSurfaceLoad> loads) { surface_loads_ = std::move(loads); }
   // The linearised Dirichlet predictor of iga::Problem::predict: from the committed state with its
   // tangent, K_ff du_f = -(f_int(u_n) + K_fp du_p - f_ext)_f for the prescribed increment du_p of
   // the step, u <- u + du_f, so the first iterate does not squeeze the whole increment into the
@@ -145,6 +148,7 @@ class TetProblem : public solver::NonlinearProblem {
   std::vector<Eigen::Vector3d> fibres_;
   std::vector<TetDirichlet> conditions_;
   VectorField body_force_;
+  std::vector<TetSurfaceLoad> surface_loads_;
   TetProblemOptions options_;
   Formulation formulation_ = Formulation::displacement;
   int num_free_ = 0;

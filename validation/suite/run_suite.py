@@ -25,7 +25,7 @@ checks the thesis's claims:
 * every headline number: its change from level 1 to level 2 (converged to 1 % when below 0.01).
 
 Usage: /usr/bin/python3 validation/suite/run_suite.py [--exe build/release/app/isomuscle]
-           [--out validation/output/suite] [--levels 0 1 2] [--only cone barrel ...]
+           [--out validation/output/suite] [--levels 0 1 2] [--only cone barrel ...] [--reuse]
 Needs numpy, matplotlib and h5py (Debian python3-numpy python3-matplotlib python3-h5py).
 """
 import argparse
@@ -102,14 +102,22 @@ def scene_variant(scene, level, directions, extra, folder):
     return out, k
 
 
-def run(exe, scene_path, out_dir):
+def run(exe, scene_path, out_dir, reuse=False):
+    """Runs the scene into out_dir; with reuse, a finished run of the same scene text is kept."""
     start = time.time()
-    r = subprocess.run([exe, "run", scene_path, "--out", out_dir, "--threads", "1"],
-                       capture_output=True, text=True)
     summary_path = os.path.join(out_dir, "summary.json")
+    copy = os.path.join(out_dir, "scene.toml")
+    same = (reuse and os.path.exists(summary_path) and os.path.exists(copy) and
+            open(copy).read() == open(scene_path).read())
+    r = None
+    if not same:
+        r = subprocess.run([exe, "run", scene_path, "--out", out_dir, "--threads", "1"],
+                           capture_output=True, text=True)
     if not os.path.exists(summary_path):
         raise SystemExit("run_suite: %s wrote no summary (exit %d):\n%s" %
                          (scene_path, r.returncode, r.stderr[-2000:]))
+    if same:
+        print("run_suite: %s: reused" % os.path.basename(scene_path), file=sys.stderr)
     with open(summary_path) as f:
         summary = json.load(f)
     rows = list(csv.DictReader(open(os.path.join(out_dir, "probes.csv"))))
@@ -261,6 +269,8 @@ def main():
     parser.add_argument("--out", default=os.path.join(ROOT, "validation", "output", "suite"))
     parser.add_argument("--levels", type=int, nargs="+", default=[0, 1, 2])
     parser.add_argument("--only", nargs="+", default=None, help="examples to run (default: all)")
+    parser.add_argument("--reuse", action="store_true",
+                        help="keep finished runs of unchanged scenes in OUT/runs")
     args = parser.parse_args()
     if not os.access(args.exe, os.X_OK):
         raise SystemExit("no isomuscle executable at %s (build it, or pass --exe)" % args.exe)
@@ -275,7 +285,7 @@ def main():
                 path, k = scene_variant(scene, level, ex["refine"], extra,
                                         os.path.join(args.out, "scenes"))
                 out = os.path.join(args.out, "runs", "%s-%s-L%d" % (ex["name"], label, level))
-                r = run(args.exe, path, out)
+                r = run(args.exe, path, out, args.reuse)
                 r["knot_insertion"] = k
                 results[(ex["name"], label, level)] = r
                 s = r["summary"]
