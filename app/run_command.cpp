@@ -6,8 +6,14 @@
 //
 // Progress: on a terminal one line, rewritten in place after every step (time, step, Newton
 // iterations, residual); otherwise (a log file, a pipe) one plain line per step.
+//
+// SIGINT (Ctrl-C) or SIGTERM (a batch system's time limit) stops the run after the step under
+// way, as a failure "interrupted" with everything up to that step written (exit code 1); a second
+// signal ends the process at once.
+#include <signal.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -25,6 +31,40 @@ namespace isomuscle::app {
 namespace {
 
 namespace fs = std::filesystem;
+
+volatile std::sig_atomic_t stop_signal = 0;
+
+extern "C" void on_stop_signal(int signal_number) {
+  if (stop_signal != 0) {  // the second one: stop now
+    std::signal(signal_number, SIG_DFL);
+    std::raise(signal_number);
+    return;
+  }
+  stop_signal = signal_number;
+}
+
+// Installs on_stop_signal for SIGINT and SIGTERM for the lifetime of the object.
+class StopOnSignal {
+ public:
+  StopOnSignal() {
+    struct sigaction action {};
+    action.sa_handler = on_stop_signal;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, &old_int_);
+    sigaction(SIGTERM, &action, &old_term_);
+  }
+  ~StopOnSignal() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  StopOnSignal(const StopOnSignal&) = delete;
+  StopOnSignal& operator=(const StopOnSignal&) = delete;
+  static bool requested() { return stop_signal != 0; }
+
+ private:
+  struct sigaction old_int_ {};
+  struct sigaction old_term_ {};
+};
 
 struct RunArgs {
   std::string scene;
@@ -77,6 +117,8 @@ int run(const RunArgs& args) {
   };
   std::cout << "isomuscle run: " << args.scene << " -> " << options.out_dir.string() << std::endl;
   io::RunResult result;
+  const StopOnSignal stop_on_signal;
+  options.stop_requested = [] { return StopOnSignal::requested(); };
   try {
     result = io::run_scene(scene, options);
   } catch (const std::exception& e) {

@@ -148,6 +148,7 @@ solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool w
   const bool from_base = mixed && use_base && base_valid_;
   const bool store_base = mixed && want_tangent;
   const std::size_t hs = static_cast<std::size_t>(history_size_);
+  thread_min_J_.assign(workspaces_.size(), continuum::JacobianMinimum{});
   auto body = [&](int e, int thread) -> solver::EvaluationStatus {
     ElementWorkspace& ws = workspaces_[thread];
     const auto cps = space_.control_points(e);
@@ -165,6 +166,7 @@ solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool w
     if (!ks.ok()) {
       return solver::EvaluationStatus::failure(describe_failure(e, ks));
     }
+    thread_min_J_[thread].take_element(e, std::span<const double>(ws.J.data(), nqp));
     if (store_base)
       next_base_.store(e, ws);
     const auto& all = element_all_dofs_[e];
@@ -218,6 +220,7 @@ solver::EvaluationStatus Problem::evaluate(const Eigen::VectorXd& u, Eigen::Vect
   if (!status.ok) {
     return status;
   }
+  evaluated_min_J_ = continuum::JacobianMinimum::of(thread_min_J_);
   Eigen::VectorXd diff = f_int_ - f_ext_;
   constraints_.restrict_to_free(diff, residual);
   if (!residual.allFinite()) {
@@ -243,6 +246,7 @@ void Problem::commit_step(const Eigen::VectorXd& u) {
   }
   history_previous_.swap(history_committed_);
   history_committed_ = history_trial_;
+  committed_min_J_ = evaluated_min_J_;
   base_valid_ = false;
   constraints_.expand(u, time_, committed_full_);
   committed_free_ = u;

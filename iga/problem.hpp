@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "continuum/formulation.hpp"
+#include "continuum/jacobian_minimum.hpp"
 #include "continuum/mixed_base_storage.hpp"
 #include "continuum/point_state.hpp"
 #include "iga/boundary_conditions.hpp"
@@ -119,6 +120,9 @@ class Problem : public solver::NonlinearProblem {
   const Eigen::VectorXd& committed_free() const { return committed_free_; }
   const Eigen::VectorXd& committed_displacement() const { return committed_full_; }
   double committed_time() const { return committed_time_; }
+  // Smallest J = det F over the quadrature points of the committed state (its element and local
+  // point; found() is false before the first commit).
+  const continuum::JacobianMinimum& committed_min_jacobian() const { return committed_min_J_; }
   std::span<const double> committed_history(int element, int point) const;
   const std::vector<Eigen::Vector3d>& fibres() const { return fibres_; }
   // External force at the current time (all DOFs), N.
@@ -176,6 +180,9 @@ class Problem : public solver::NonlinearProblem {
   solver::SparsityPattern pattern_;
   solver::ElementColouring colouring_;
   std::vector<ElementWorkspace> workspaces_;
+  // Per thread during an assembly pass; of the last successful evaluate(); of the committed state.
+  std::vector<continuum::JacobianMinimum> thread_min_J_;
+  continuum::JacobianMinimum evaluated_min_J_, committed_min_J_;
   int history_size_ = 0;
   std::vector<double> history_committed_;
   std::vector<double> history_trial_;

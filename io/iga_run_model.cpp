@@ -82,6 +82,7 @@ class IgaRunModel final : public RunModel {
            model_.law->name();
   }
   const std::vector<std::string>& notes() const override { return notes_; }
+  const std::string& failure_hint() const override { return model_.failure_hint; }
 
   const std::vector<std::string>& probe_columns() const override { return probes_->columns(); }
   void before_commit(const Eigen::VectorXd& u) override {
@@ -104,6 +105,12 @@ class IgaRunModel final : public RunModel {
   double solution_last_time() const override { return solution_->last_time(); }
 
   double committed_time() const override { return model_.problem->committed_time(); }
+  std::optional<JacobianAt> committed_min_jacobian() const override {
+    const continuum::JacobianMinimum& m = model_.problem->committed_min_jacobian();
+    if (!m.found())
+      return std::nullopt;
+    return JacobianAt{m.value, model_.problem->space().position(m.element, m.point)};
+  }
   double current_volume() const override {
     return model_.problem->current_volume(model_.problem->committed_displacement());
   }

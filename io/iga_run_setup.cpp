@@ -140,6 +140,20 @@ IgaModel build_iga_model(const Scene& scene, int threads) {
       volume =
           geometry::refine_uniform(volume, s, g.refine.knot_insertion[static_cast<std::size_t>(d)]);
   }
+  for (int d = 0; d < 3; ++d) {
+    const std::vector<double>& t = g.refine.knots[static_cast<std::size_t>(d)];
+    if (t.empty())
+      continue;
+    const int s = frame.solid_direction[static_cast<std::size_t>(d)];
+    std::vector<double> solid_knots;
+    for (double scene_t : t) {
+      Eigen::Vector3d xi = Eigen::Vector3d::Constant(0.5);
+      xi[d] = scene_t;
+      solid_knots.push_back(frame.solid_xi(xi)[s]);
+    }
+    std::sort(solid_knots.begin(), solid_knots.end());  // a reversed direction reverses them
+    volume = geometry::refine_knots(volume, s, solid_knots);
+  }
   model.space = std::make_unique<iga::Space>(std::move(volume));
   model.dofs = std::make_unique<iga::DofMap>(model.space->volume());
 
@@ -173,6 +187,10 @@ IgaModel build_iga_model(const Scene& scene, int threads) {
                           "' has no volumetric split: the mixed u-p-J formulation does not apply, "
                           "using the displacement formulation");
   }
+  model.failure_hint =
+      displacement_locking_hint(*model.law, options.formulation == iga::Formulation::displacement);
+  if (!model.failure_hint.empty())
+    model.notes.push_back(model.failure_hint);
   model.problem =
       std::make_unique<iga::Problem>(*model.space, *model.dofs, *model.law, std::move(fibres),
                                      model.conditions, std::move(loads), options);

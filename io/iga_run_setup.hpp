@@ -37,6 +37,7 @@ struct IgaModel {
   iga::DirichletConditions conditions;
   std::unique_ptr<iga::Problem> problem;
   std::vector<std::string> notes;  // decisions a user should know about, for the log
+  std::string failure_hint;        // appended to the reason of a failed run (empty: none)
 };
 
 // Builds the model of a scene (checked by Scene::validate beforehand). threads: assembly threads

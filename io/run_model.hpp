@@ -5,6 +5,7 @@
 // and the tetrahedral one (tet_run_model.hpp), so that both runs step, log, cut back and write
 // their folders in exactly the same way.
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,12 @@
 #include "solver/nonlinear_problem.hpp"
 
 namespace isomuscle::io {
+
+// The smallest J = det F of a state and the reference position (m) of its quadrature point.
+struct JacobianAt {
+  double value = 0.0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+};
 
 class RunModel {
  public:
@@ -29,6 +36,8 @@ class RunModel {
   virtual void describe(RunSummary& summary) const = 0;
   virtual std::string setup_line() const = 0;
   virtual const std::vector<std::string>& notes() const = 0;
+  // Appended to the reason when the run fails (e.g. why this set-up is hard); may be empty.
+  virtual const std::string& failure_hint() const = 0;
 
   // Probes (probes.csv): the columns, a hook on the converged free values before they are
   // committed (reactions, pre-step histories), the values of the committed state.
@@ -49,6 +58,8 @@ class RunModel {
   virtual double committed_time() const = 0;
   virtual double current_volume() const = 0;    // m^3
   virtual double max_displacement() const = 0;  // m, over the output points
+  // Over the quadrature points of the committed state; nullopt before the first commit.
+  virtual std::optional<JacobianAt> committed_min_jacobian() const = 0;
 };
 
 }  // namespace isomuscle::io

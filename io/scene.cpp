@@ -125,6 +125,14 @@ void RefinementSettings::validate() const {
     const std::string k = range_violation(knot_insertion[i], Range::closed(0, 1000));
     if (!k.empty())
       throw InvalidSetting("knot_insertion", element + k);
+    const std::vector<double>& t = knots[static_cast<std::size_t>(i)];
+    for (std::size_t j = 0; j < t.size(); ++j) {
+      if (!(t[j] > 0.0 && t[j] < 1.0) || (j > 0 && !(t[j] > t[j - 1])))
+        throw InvalidSetting("knots", std::string(1, "uvw"[i]) +
+                                          " must be strictly increasing values in (0, 1) (got " +
+                                          format_number(t[j]) + " at position " +
+                                          std::to_string(j + 1) + ")");
+    }
   }
 }
 

@@ -33,6 +33,10 @@ std::vector<std::string> face_names();
 struct RefinementSettings {
   std::array<int, 3> degree_elevation{0, 0, 0};  // degree raised by this much in u, v, w
   std::array<int, 3> knot_insertion{0, 0, 0};    // new knots per existing knot span in u, v, w
+  // Knots inserted once each after the uniform insertion, as scene parameters in (0, 1) per
+  // direction u, v, w: refinement concentrated where the user wants it (e.g. next to the
+  // collapsed centreline, w -> 1 on a shrink solid). Strictly increasing.
+  std::array<std::vector<double>, 3> knots{};
   void validate() const;
 };
 
@@ -158,7 +162,9 @@ struct TimeSettings {
   double dt = 0.01;             // s, first (and, unless adaptive, every) step
   double dt_min = 0.01 / 1024;  // s, smallest step before the run fails; a scene: dt / 1024
   double dt_max = 0.01;  // s, largest step an adaptive run grows to; a scene defaults it to dt
-  bool adaptive = true;  // grow the step after easy convergence, not only cut it after failure
+  // Grow the step after easy convergence up to dt_max; false: steps of dt, a cut step grows back
+  // to dt only.
+  bool adaptive = true;
   void validate() const;
 };
 

@@ -71,6 +71,13 @@ GeometrySettings read_geometry(SceneTable t, const std::filesystem::path& base) 
     if (auto k = r->optional_integers("knot_insertion", 3, allowed)) {
       g.refine.knot_insertion = {(*k)[0], (*k)[1], (*k)[2]};
     }
+    if (auto knots = r->optional_table("knots")) {
+      for (Direction d : {Direction::u, Direction::v, Direction::w}) {
+        if (auto t = knots->optional_numbers(to_string(d), 0, Range::open(0.0, 1.0)))
+          g.refine.knots[static_cast<std::size_t>(d)] = *t;
+      }
+      knots->finish();
+    }
     r->finish();
   }
   if (auto e = t.optional_table("extract")) {

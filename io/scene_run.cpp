@@ -172,8 +172,11 @@ solver::TimeStepperSettings stepper_settings(const TimeSettings& t,
   s.end_time = t.end;
   s.initial_dt = t.dt;
   s.min_dt = t.dt_min;
+  // Not adaptive: every step is dt, but a step that was cut back grows back to dt afterwards
+  // (never beyond), with the same easy-step rule; without regrowth one hard step would leave the
+  // rest of the run at the cut size (the robustness matrix's fixed dt = 0.01 s half torus: 3x the
+  // time).
   s.max_dt = t.adaptive ? t.dt_max : t.dt;
-  s.growth_factor = t.adaptive ? s.growth_factor : 1.0;
   for (double x : outputs) {
     if (x > 0.0)
       s.output_times.push_back(x);
@@ -267,6 +270,8 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   int steps = 0;
   double min_rcond = 1.0;
   bool factorised = false;
+  std::optional<JacobianAt> min_jacobian;  // over the converged steps
+  double min_jacobian_time = 0.0;
   std::vector<double> probe_row;
   std::optional<std::vector<double>> last_probes;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
@@ -292,6 +297,11 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         factorised = true;
         min_rcond = std::min(min_rcond, n.min_rcond);
       }
+      if (const std::optional<JacobianAt> J = model->committed_min_jacobian();
+          J && (!min_jacobian || J->value < min_jacobian->value)) {
+        min_jacobian = J;
+        min_jacobian_time = r.time;
+      }
       for (const solver::NewtonIteration& it : n.history) {
         newton_csv->write_row(
             {static_cast<double>(r.step), r.time, r.dt, static_cast<double>(it.iteration),
@@ -315,6 +325,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
                                      n.initial_residual_norm, n.final_residual_norm,
                                      ns.solves - ns.converged_solves});
       }
+      if (!info.final && options.stop_requested && options.stop_requested())
+        throw std::runtime_error(
+            "interrupted (SIGINT or SIGTERM); the results up to this step are written");
     };
     stepped = stepper->run(stepped_problem, u, on_step);
     if (!stepped.completed)
@@ -358,6 +371,13 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
                              {"tangent_evaluations", ns.tangent_evaluations}};
   }
   s.extra["time"] = Json{{"end", scene.time.end}, {"reached", result.time_reached}};
+  s.extra["min_jacobian"] = min_jacobian
+                                ? Json{{"value", min_jacobian->value},
+                                       {"time", min_jacobian_time},
+                                       {"position",
+                                        {min_jacobian->position.x(), min_jacobian->position.y(),
+                                         min_jacobian->position.z()}}}
+                                : Json(nullptr);
   s.extra["outputs"] =
       Json{{"fields", model->field_steps() > 0 ? Json("fields.xdmf") : Json(nullptr)},
            {"field_steps", model->field_steps()},
@@ -381,6 +401,8 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     s.probes[model->probe_columns()[i]] =
         last_probes ? std::optional<double>((*last_probes)[i]) : std::nullopt;
   }
+  if (!failure.empty() && !model->failure_hint().empty())
+    failure += " (" + model->failure_hint() + ")";
   return finish(failure);
 }
 

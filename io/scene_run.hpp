@@ -54,6 +54,10 @@ struct RunOptions {
   std::function<void(const std::string&)> log;
   // Called after every converged step; empty: none.
   std::function<void(const RunProgress&)> progress;
+  // Asked after every converged step (its outputs written): true stops the run there as a failure
+  // "interrupted", with the summary and the results up to that step written (a user's Ctrl-C, a
+  // batch system's time limit). Empty: never.
+  std::function<bool()> stop_requested;
 };
 
 struct RunResult {

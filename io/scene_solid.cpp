@@ -4,7 +4,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 
 #include "geometry/extrusion.hpp"
@@ -257,6 +259,17 @@ SceneSolid build_scene_solid(const GeometrySettings& g) {
   if (g.extracts())
     out.volume = extract_piece(out.volume, g, frame);
   return out;
+}
+
+std::string displacement_locking_hint(const materials::MaterialLaw& law, bool displacement) {
+  const double mu = law.shear_modulus(), kappa = law.bulk_modulus();
+  if (!displacement || !(mu > 0.0) || !(kappa >= 100.0 * mu))
+    return {};
+  std::ostringstream msg;
+  msg << std::setprecision(2) << "the displacement formulation with kappa/mu = " << kappa / mu
+      << " (nearly incompressible) locks and is ill-conditioned; [solver] formulation = \"mixed\""
+      << " is the formulation for this law";
+  return msg.str();
 }
 
 }  // namespace isomuscle::io

@@ -61,6 +61,12 @@ iga::FibreSpec fibre_spec(const FibreSettings& fibres, const SceneFrame& frame,
 std::unique_ptr<materials::MaterialLaw> make_law(const MaterialSettings& material,
                                                  TangentKind tangent);
 
+// What a user must know when the displacement formulation meets a nearly incompressible law
+// (kappa/mu >= 100, nu >= 0.495): it locks (far too stiff on any practical mesh) and its tangent's
+// condition grows with kappa/mu, so Newton stalls at a residual floor; empty otherwise. Said at
+// set-up as a note and appended to the reason when such a run fails.
+std::string displacement_locking_hint(const materials::MaterialLaw& law, bool displacement);
+
 // "(x, y, z)" with the shortest exact numbers, for messages.
 std::string describe_point(const Eigen::Vector3d& x);
 

@@ -24,6 +24,7 @@ struct Range {
   static Range non_negative() { return {0.0, std::numeric_limits<double>::infinity()}; }
   static Range at_least(double a) { return {a, std::numeric_limits<double>::infinity()}; }
   static Range closed(double a, double b) { return {a, b}; }
+  static Range open(double a, double b) { return {a, b, true, true}; }
   // Every number including +-inf (checked elsewhere, e.g. by the material factory).
   static Range any_or_infinite() {
     Range r;

@@ -167,7 +167,8 @@ TetModel build_tet_model(const Scene& scene, int threads) {
     }
   }
   if (g.refine.degree_elevation != std::array<int, 3>{0, 0, 0} ||
-      g.refine.knot_insertion != std::array<int, 3>{0, 0, 0}) {
+      g.refine.knot_insertion != std::array<int, 3>{0, 0, 0} ||
+      !(g.refine.knots[0].empty() && g.refine.knots[1].empty() && g.refine.knots[2].empty())) {
     model.notes.push_back(
         "[geometry.refine] does not apply to tetrahedra (the mesh is set by "
         "[tetrahedra]); the NURBS solid is used unrefined for fibres and faces");
@@ -202,6 +203,10 @@ TetModel build_tet_model(const Scene& scene, int threads) {
                           "' has no volumetric split: the mixed u-p-J formulation does not apply, "
                           "using the displacement formulation");
   }
+  model.failure_hint =
+      displacement_locking_hint(*model.law, options.formulation == tet::Formulation::displacement);
+  if (!model.failure_hint.empty())
+    model.notes.push_back(model.failure_hint);
   if (options.formulation == tet::Formulation::mixed && model.mesh->order == 1) {
     model.notes.push_back(
         "4-node tetrahedra with the mixed formulation: a constant p~, J~ per "

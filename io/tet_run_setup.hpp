@@ -45,6 +45,7 @@ struct TetModel {
   std::vector<Eigen::Vector3d> boundary_xi;  // their parameters in solid.volume (same order)
   std::unique_ptr<tet::TetProblem> problem;
   std::vector<std::string> notes;
+  std::string failure_hint;  // appended to the reason of a failed run (empty: none)
 };
 
 // Builds the model (scene validated beforehand). Throws std::runtime_error /

@@ -210,6 +210,7 @@ solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, boo
   const int nqp = space_.points_per_element();
   const int nen = space_.nodes_per_element();
   const std::size_t hs = static_cast<std::size_t>(history_size_);
+  thread_min_J_.assign(workspaces_.size(), continuum::JacobianMinimum{});
   auto body = [&](int e, int thread) -> solver::EvaluationStatus {
     ElementWorkspace& ws = workspaces_[thread];
     const auto el = space_.mesh().element(e);
@@ -224,6 +225,7 @@ solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, boo
     if (!ks.ok()) {
       return solver::EvaluationStatus::failure(describe_failure(e, ks));
     }
+    thread_min_J_[thread].take_element(e, std::span<const double>(ws.J.data(), nqp));
     if (store_base)
       next_base_.store(e, ws);
     const auto& dofs = element_dofs_[e];
@@ -275,6 +277,7 @@ solver::EvaluationStatus TetProblem::evaluate(const Eigen::VectorXd& u, Eigen::V
   if (!status.ok) {
     return status;
   }
+  evaluated_min_J_ = continuum::JacobianMinimum::of(thread_min_J_);
   residual.resize(num_free_);
   for (int d = 0; d < f_int_.size(); ++d) {
     if (free_index_[d] >= 0) {
@@ -303,6 +306,7 @@ void TetProblem::commit_step(const Eigen::VectorXd& u) {
   }
   history_previous_.swap(history_committed_);
   history_committed_ = history_trial_;
+  committed_min_J_ = evaluated_min_J_;
   base_valid_ = false;
   committed_full_ = full_displacement(u);
   committed_time_ = time_;

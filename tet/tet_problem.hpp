@@ -23,6 +23,7 @@
 
 #include "continuum/element_kernels.hpp"
 #include "continuum/formulation.hpp"
+#include "continuum/jacobian_minimum.hpp"
 #include "continuum/mixed_base_storage.hpp"
 #include "continuum/point_state.hpp"
 #include "materials/material_law.hpp"
@@ -112,6 +113,9 @@ class TetProblem : public solver::NonlinearProblem {
   const Eigen::VectorXd& committed_displacement() const { return committed_full_; }
   std::span<const double> committed_history(int element, int point) const;
   double committed_time() const { return committed_time_; }
+  // Smallest J = det F over the quadrature points of the committed state (its element and local
+  // point; found() is false before the first commit).
+  const continuum::JacobianMinimum& committed_min_jacobian() const { return committed_min_J_; }
   // State at quadrature point q of element e in the committed state: the element kernel re-run at
   // the committed displacement with the history from before the committed step (so the converged
   // stress is reproduced exactly, also for rate-dependent laws). Throws std::invalid_argument for
@@ -161,6 +165,9 @@ class TetProblem : public solver::NonlinearProblem {
   solver::SparsityPattern pattern_;
   solver::ElementColouring colouring_;
   std::vector<ElementWorkspace> workspaces_;
+  // Per thread during an assembly pass; of the last successful evaluate(); of the committed state.
+  std::vector<continuum::JacobianMinimum> thread_min_J_;
+  continuum::JacobianMinimum evaluated_min_J_, committed_min_J_;
   int history_size_ = 0;
   std::vector<double> history_committed_, history_trial_;
   std::vector<double> history_previous_;  // committed history before the last commit

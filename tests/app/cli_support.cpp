@@ -10,9 +10,10 @@
 
 namespace isomuscle::cli_test {
 
-CliResult run_isomuscle(const std::string& arguments, const std::filesystem::path& stderr_file) {
-  const std::string command =
-      std::string(ISOMUSCLE_EXE) + " " + arguments + " 2> " + stderr_file.string();
+CliResult run_isomuscle(const std::string& arguments, const std::filesystem::path& stderr_file,
+                        const std::string& launcher) {
+  const std::string command = (launcher.empty() ? "" : launcher + " ") + ISOMUSCLE_EXE + " " +
+                              arguments + " 2> " + stderr_file.string();
   CliResult r;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr)

@@ -15,8 +15,9 @@ struct CliResult {
 };
 
 // Runs ISOMUSCLE_EXE with `arguments` (a shell command line), stdout captured, stderr through
-// `stderr_file` (overwritten).
-CliResult run_isomuscle(const std::string& arguments, const std::filesystem::path& stderr_file);
+// `stderr_file` (overwritten); `launcher` goes before the executable (e.g. "timeout -s TERM 1").
+CliResult run_isomuscle(const std::string& arguments, const std::filesystem::path& stderr_file,
+                        const std::string& launcher = "");
 
 // The whole file as bytes ("" if it cannot be read).
 std::string read_text(const std::filesystem::path& path);

@@ -39,7 +39,7 @@ CookRun run_cook(int n, io::Formulation formulation) {
   const fs::path out =
       fs::temp_directory_path() / ("isomuscle_cook_" + std::to_string(getpid()) + "_" +
                                    std::to_string(n) + "_" + io::to_string(formulation));
-  const io::RunResult r = io::run_scene(scene, {out, 1, {}, {}});
+  const io::RunResult r = io::run_scene(scene, {out, 1, {}, {}, {}});
   EXPECT_TRUE(r.converged) << r.failure_reason;
   CookRun c;
   if (r.summary.probes.at("corner_uy"))

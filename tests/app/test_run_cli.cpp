@@ -120,6 +120,19 @@ TEST_F(SlowRunCli, SmallBarrelContractionWritesEveryResult) {
   EXPECT_EQ(s["scene"], scene.string());
   const io::RunSummary parsed = io::read_summary(out / "summary.json");  // the reader accepts it
   EXPECT_TRUE(parsed.converged);
+  // The smallest J = det F over the quadrature points of the converged states, when and where:
+  // the volume is kept, so it is at most 1 (the mean), and it lies inside the barrel.
+  const nlohmann::json& min_J = s["min_jacobian"];
+  ASSERT_TRUE(min_J.is_object()) << s.dump(2);
+  EXPECT_GT(min_J["value"].get<double>(), 0.0);
+  EXPECT_LE(min_J["value"].get<double>(), 1.0);
+  EXPECT_GT(min_J["time"].get<double>(), 0.0);
+  EXPECT_LE(min_J["time"].get<double>(), 0.003);
+  const std::vector<double> at = min_J["position"].get<std::vector<double>>();
+  ASSERT_EQ(at.size(), 3u);
+  EXPECT_LE(std::hypot(at[0], at[1]), 0.00875);
+  EXPECT_GE(at[2], 0.0);
+  EXPECT_LE(at[2], 0.05);
 
   EXPECT_TRUE(fs::exists(out / "fields.xdmf"));
   EXPECT_TRUE(fs::exists(out / "fields.h5"));
@@ -313,6 +326,87 @@ TEST_F(RunCli, StepThatCannotConvergeKeepsTheConvergedSteps) {
   EXPECT_NE(x.find("<Time Value=\"0.01\"/>"), std::string::npos);
   EXPECT_NE(x.find("<Time Value=\"0.02\"/>"), std::string::npos);
   EXPECT_EQ(x.find("<Time Value=\"0.03\"/>"), std::string::npos);
+  // A mixed run that fails is not told about locking.
+  EXPECT_EQ(s["reason"].get<std::string>().find("locks"), std::string::npos);
+  EXPECT_TRUE(s["notes"].empty()) << s["notes"].dump();
+}
+
+// SIGTERM (a batch system's time limit; SIGINT is Ctrl-C) stops the run after the step under way:
+// exit code 1, the summary says "interrupted" and the converged steps are in every file. The
+// contraction runs for 2 s of model time (tens of seconds of wall time); the signal comes after 1
+// s.
+TEST_F(RunCli, SignalStopsTheRunAndKeepsTheConvergedSteps) {
+  const fs::path scene =
+      write("interrupted.toml",
+            barrel_scene("[material]\nmodel = \"tang2009\"\n", "", "end = 2.0\ndt = 0.001\n",
+                         "[[probe]]\nname = \"volume\"\nkind = \"volume\"\n"));
+  const fs::path out = dir_ / "interrupted";
+  const CliResult r =
+      cli_test::run_isomuscle("run " + scene.string() + " --out " + out.string(),
+                              dir_ / "stderr.txt", "timeout --preserve-status -s TERM 1");
+  EXPECT_EQ(r.code, 1) << r.err;
+  const nlohmann::json s = summary(out);
+  EXPECT_EQ(s["status"], "failed");
+  EXPECT_NE(s["reason"].get<std::string>().find("interrupted"), std::string::npos) << s["reason"];
+  const int steps = s["steps"].get<int>();
+  EXPECT_GE(steps, 1);
+  EXPECT_LT(s["time"]["reached"].get<double>(), 2.0);
+  EXPECT_EQ(read_csv(out / "probes.csv").rows.size(), static_cast<std::size_t>(steps));
+  EXPECT_TRUE(fs::exists(out / "solution.h5"));
+}
+
+// adaptive = false: steps of dt, but a step that fails is cut back and the step then grows back
+// towards dt (never beyond it) instead of staying at the cut size for the rest of the run. The
+// clamp starts moving at 0.3 s; with 4 Newton iterations allowed that step is cut 7 times.
+TEST_F(RunCli, FixedStepGrowsBackToDtAfterACut) {
+  const fs::path scene =
+      write("fixed_dt.toml",
+            barrel_scene("[material]\nmodel = \"lu2010\"\n[material.parameters]\nn2 = 0.0\n",
+                         "[[boundary]]\nface = \"v1\"\ntype = \"displacement\"\n"
+                         "velocity = [0.0, 0.0, 0.05]\nstart = 0.3\n",
+                         "end = 1.0\ndt = 0.1\nadaptive = false\n", "newton_max_iterations = 4\n"));
+  const fs::path out = dir_ / "fixed_dt";
+  const CliResult r = run("run " + scene.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json s = summary(out);
+  ASSERT_GE(s["step_cuts"].size(), 1u);
+  const Table probes = read_csv(out / "probes.csv");
+  double smallest = 1.0, largest_after_cut = 0.0;
+  for (const auto& row : probes.rows) {
+    const double dt = row[probes.column("dt")];
+    EXPECT_LE(dt, 0.1 * (1.0 + 1e-12));
+    smallest = std::min(smallest, dt);
+    if (row[probes.column("time")] > 0.5)
+      largest_after_cut = std::max(largest_after_cut, dt);
+  }
+  EXPECT_LT(smallest, 0.01);
+  EXPECT_GT(largest_after_cut, 0.04);  // grown back: 43 steps in all, not ~900 of the cut size
+  EXPECT_LT(s["steps"].get<int>(), 100);
+}
+
+// The displacement formulation with a nearly incompressible law (lu2010: kappa/mu ~ 1e4) is
+// allowed, for comparisons, but the run says at set-up, and in the reason when it fails, that it
+// locks and which formulation this law needs.
+TEST_F(RunCli, DisplacementFormulationFailureSaysItLocks) {
+  const fs::path scene = write(
+      "crush_displacement.toml",
+      barrel_scene("[material]\nmodel = \"lu2010\"\n[material.parameters]\nn2 = 0.0\n",
+                   "[[boundary]]\nface = \"v1\"\ntype = \"displacement\"\n"
+                   "velocity = [0.0, 0.0, -10.0]\nstart = 0.02\n",
+                   "end = 0.05\ndt = 0.01\ndt_min = 0.01\n", "formulation = \"displacement\"\n"));
+  const fs::path out = dir_ / "crush_displacement";
+  const CliResult r = run("run " + scene.string() + " --out " + out.string());
+  EXPECT_EQ(r.code, 1) << r.err;
+  const nlohmann::json s = summary(out);
+  EXPECT_EQ(s["status"], "failed");
+  const std::string reason = s["reason"].get<std::string>();
+  EXPECT_NE(reason.find("the displacement formulation with kappa/mu = "), std::string::npos)
+      << reason;
+  EXPECT_NE(reason.find("locks"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("formulation = \"mixed\""), std::string::npos) << reason;
+  ASSERT_EQ(s["notes"].size(), 1u) << s["notes"].dump();
+  EXPECT_NE(s["notes"][0].get<std::string>().find("locks"), std::string::npos);
+  EXPECT_NE(r.err.find("note: the displacement formulation"), std::string::npos) << r.err;
 }
 
 // Newton on a passive stretch (lu2010, no activation) converges quadratically: in one step that

@@ -51,7 +51,7 @@ class SlowTetScenes : public ::testing::Test {
     scene.geometry.refine.knot_insertion = knot_insertion;
     if (scene.discretisation == io::Discretisation::tet)
       scene.tetrahedra.element_size = element_size;
-    const io::RunResult r = io::run_scene(scene, {dir_ / name, 1, {}, {}});
+    const io::RunResult r = io::run_scene(scene, {dir_ / name, 1, {}, {}, {}});
     EXPECT_TRUE(r.converged) << name << ": " << r.failure_reason;
     EXPECT_EQ(r.summary.discretisation,
               scene.discretisation == io::Discretisation::tet ? "tet" : "iga");

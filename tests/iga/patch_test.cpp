@@ -17,8 +17,11 @@
 //    the defect at any quadrature but makes the Galerkin tangent non-symmetric.
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "iga/dof_map.hpp"
 #include "iga/fibre_directions.hpp"
@@ -30,8 +33,9 @@ namespace isomuscle::iga {
 namespace {
 
 struct PatchErrors {
-  double F = 0.0;  // max |F_h - F0| (entries) over the quadrature points
-  double S = 0.0;  // max |S_h - S0| / |S0|
+  double F = 0.0;      // max |F_h - F0| (entries) over the quadrature points
+  double S = 0.0;      // max |S_h - S0| / |S0|
+  double min_J = 0.0;  // |smallest J of the committed state - det F0|
   int iterations = 0;
 };
 
@@ -80,12 +84,20 @@ PatchErrors run_patch(const geometry::NurbsVolume& vol, const std::vector<Side>&
   in.F = F0;
   materials::PointResult exact;
   law->evaluate(in, exact, false);
+  double min_J = std::numeric_limits<double>::infinity();
   for (int e = 0; e < space.num_elements(); ++e) {
     for (const PointState& st : problem.element_states(e)) {
       err.F = std::max(err.F, (st.field.F - F0).cwiseAbs().maxCoeff());
       err.S = std::max(err.S, (st.S - exact.S).norm() / exact.S.norm());
+      min_J = std::min(min_J, st.J);
     }
   }
+  // The committed state's smallest J (kept during assembly, per thread) is the smallest J of its
+  // element states (det F0 where the patch is exact).
+  const continuum::JacobianMinimum& jm = problem.committed_min_jacobian();
+  EXPECT_TRUE(jm.found());
+  EXPECT_DOUBLE_EQ(jm.value, min_J);
+  err.min_J = std::abs(jm.value - F0.determinant());
   return err;
 }
 
@@ -107,6 +119,7 @@ void bspline_patch(int p) {
         "(%d Newton iterations)\n",
         p, to_string(f), exact_points, e.F, e.S, e.iterations);
     EXPECT_LT(e.F, 1e-10) << "p = " << p << " " << to_string(f);
+    EXPECT_LT(e.min_J, 1e-10) << "p = " << p << " " << to_string(f);
     EXPECT_LT(e.S, 1e-10) << "p = " << p << " " << to_string(f);
   }
 }
@@ -140,6 +153,7 @@ void polynomial_cylinder_patch(int p) {
         cyl.degree(0), cyl.degree(1), cyl.degree(2), to_string(f), exact_points, e.F, e.S,
         e.iterations);
     EXPECT_LT(e.F, 1e-10) << "p = " << p << " " << to_string(f);
+    EXPECT_LT(e.min_J, 1e-10) << "p = " << p << " " << to_string(f);
     EXPECT_LT(e.S, 1e-10) << "p = " << p << " " << to_string(f);
   }
 }

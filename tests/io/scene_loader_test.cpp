@@ -448,6 +448,31 @@ TEST_F(SceneLoader, ExtrusionAndLoads) {
   EXPECT_EQ(error(ramp).line(), line_containing(ramp, "ramp_time ="));
 }
 
+// Knots at chosen parameters (refinement concentrated next to the axis): read per direction,
+// checked to be strictly increasing inside (0, 1), at the line of the key.
+TEST_F(SceneLoader, ConcentratedKnotsAreReadAndChecked) {
+  const auto with_knots = [this](const std::string& knots) {
+    std::string text = minimal();
+    text.insert(text.find("[material]"), "[geometry.refine]\nknots = { " + knots + " }\n");
+    return text;
+  };
+  const Scene s = parse(with_knots("w = [0.9, 0.97], u = [0.5]"));
+  EXPECT_EQ(s.geometry.refine.knots[2], (std::vector<double>{0.9, 0.97}));
+  EXPECT_EQ(s.geometry.refine.knots[0], (std::vector<double>{0.5}));
+  EXPECT_TRUE(s.geometry.refine.knots[1].empty());
+
+  const std::string outside = with_knots("w = [0.9, 1.0]");
+  const SceneError e1 = error(outside);
+  EXPECT_EQ(e1.line(), line_containing(outside, "knots ="));
+  EXPECT_NE(e1.message().find("must be in (0, 1)"), std::string::npos) << e1.message();
+  const std::string unordered = with_knots("w = [0.97, 0.9]");
+  const SceneError e2 = error(unordered);
+  EXPECT_EQ(e2.line(), line_containing(unordered, "knots ="));
+  EXPECT_NE(e2.message().find("strictly increasing"), std::string::npos) << e2.message();
+  const SceneError e3 = error(with_knots("r = [0.5]"));
+  EXPECT_NE(e3.message().find("unknown key"), std::string::npos) << e3.message();
+}
+
 TEST_F(SceneLoader, TimeAndOutputConsistency) {
   std::string dt = minimal();
   dt.replace(dt.find("dt = 0.005"), 10, "dt = 0.5");
