@@ -20,11 +20,151 @@ std::string location_prefix(const std::string& file, int line, int column) {
 }
 
 std::string in_quotes(std::string_view key) {
-  return "'" + std::string(key) + "'";
+  std::string quoted;  // (appended: GCC 12 warns falsely about "'" + std::string&&)
+  quoted.reserve(key.size() + 2);
+  quoted.append(1, '\'').append(key).append(1, '\'');
+  return quoted;
 }
 
 std::string ordinal_element(std::size_t index, std::string_view key) {
   return "element " + std::to_string(index + 1) + " of '" + std::string(key) + "'";
+}
+
+// toml++ 3.3.0 (Debian 12) reaches an unreachable point, i.e. undefined behaviour, when it asks
+// whether a non-ASCII character in U+00A1..U+0499 or U+2C1E..U+3017 (é, µ, °, Greek, Cyrillic)
+// is whitespace (upstream marzer/tomlplusplus#190, #295). It asks that of every character outside
+// strings and comments, also of a quote and what follows it where no string can begin ("a = 5'µ'"),
+// and in a multi-line basic string of the character after a backslash and of the first one after
+// a line-ending backslash. fuzz/scene_parser_fuzzer found each (fuzz/regressions/scene_parser/).
+// Such input is rejected here, before toml++ reads it. All of it is a TOML syntax error anyway,
+// except a non-ASCII character first after a line-ending backslash: valid, but rare.
+void reject_input_tomlplusplus_mishandles(std::string_view text, const std::string& file_name) {
+  enum class State { normal, comment, basic, literal, multi_basic, multi_literal };
+  State state = State::normal;
+  int line = 1;
+  std::size_t line_begin = 0;
+  char previous = '\n';  // last character outside strings and blanks: can a string start here?
+  // toml++ reads a value that starts with neither a quote nor a bracket (a number, a date, true)
+  // up to a value terminator, quotes included: no string starts inside it ("n = 0='x'").
+  bool in_bare_value = false;
+  std::string open;  // the '[' of arrays and '{' of inline tables open in values
+  // Fails at the character at byte `where`; columns count characters, as toml++'s do.
+  const auto fail = [&](std::size_t where, const std::string& message) {
+    int column = 1;
+    for (std::size_t b = line_begin; b < where; ++b)
+      column += (static_cast<unsigned char>(text[b]) & 0xC0) != 0x80 ? 1 : 0;
+    throw SceneError(file_name, line, column, "TOML syntax error: " + message);
+  };
+  const auto at = [&](std::size_t k, std::string_view token) {
+    return text.compare(k, token.size(), token) == 0;
+  };
+  const auto blank = [&](std::size_t k) {
+    return text[k] == ' ' || text[k] == '\t' || text[k] == '\r';
+  };
+  line_begin = at(0, "\xEF\xBB\xBF") ? 3 : 0;  // a UTF-8 byte-order mark is allowed
+  for (std::size_t k = line_begin; k < text.size(); ++k) {
+    const unsigned char c = static_cast<unsigned char>(text[k]);
+    if (c == '\n') {
+      ++line;
+      line_begin = k + 1;
+      previous = '\n';
+      in_bare_value = false;
+      if (state == State::comment || state == State::basic || state == State::literal)
+        state = State::normal;  // an unterminated one-line string is toml++'s to report
+      continue;
+    }
+    // Where a value starts: after the '=' of a key, or as an element of an array.
+    const bool value_position =
+        previous == '=' || (!open.empty() && open.back() == '[' &&
+                            std::string_view("[,\n").find(previous) != std::string_view::npos);
+    switch (state) {
+      case State::normal:
+        if (c >= 0x80)
+          fail(k, "a non-ASCII character outside a string or comment");
+        if (in_bare_value) {
+          if (std::string_view(" \t\r]},#").find(static_cast<char>(c)) == std::string_view::npos) {
+            previous = static_cast<char>(c);
+            break;
+          }
+          in_bare_value = false;
+        }
+        if (c == '#') {
+          state = State::comment;
+        } else if ((c == '"' || c == '\'') &&
+                   std::string_view("\n=[{,.").find(previous) != std::string_view::npos) {
+          const bool multi = at(k, c == '"' ? "\"\"\"" : "\'\'\'");
+          state = c == '"' ? (multi ? State::multi_basic : State::basic)
+                           : (multi ? State::multi_literal : State::literal);
+          k += multi ? 2 : 0;
+        } else if ((c == '[' || c == '{') && value_position) {
+          open += static_cast<char>(c);
+        } else if ((c == ']' && !open.empty() && open.back() == '[') ||
+                   (c == '}' && !open.empty() && open.back() == '{')) {
+          open.pop_back();
+        } else if (value_position && !blank(k) && c != ']' && c != '}' && c != ',') {
+          in_bare_value = true;
+        }
+        if (!blank(k) && state == State::normal)
+          previous = static_cast<char>(c);
+        break;
+      case State::comment:
+        break;
+      case State::basic:
+        if (c == '\\' && k + 1 < text.size() && text[k + 1] != '\n') {
+          ++k;  // an escape: \" does not end the string
+        } else if (c == '"') {
+          state = State::normal;
+          previous = '"';
+        }
+        break;
+      case State::literal:
+        if (c == '\'') {
+          state = State::normal;
+          previous = '\'';
+        }
+        break;
+      case State::multi_basic:
+        if (c == '\\') {
+          if (k + 1 < text.size() && static_cast<unsigned char>(text[k + 1]) >= 0x80)
+            fail(k + 1, "'\\' before a non-ASCII character in a multi-line string is no escape");
+          std::size_t n = k + 1;
+          while (n < text.size() && blank(n))
+            ++n;
+          if (n == text.size() || text[n] != '\n') {
+            ++k;  // an escape
+            break;
+          }
+          // A line-ending backslash: toml++ asks of every character after it whether it is
+          // whitespace, up to the first that is not.
+          for (; n < text.size() && (blank(n) || text[n] == '\n'); ++n) {
+            if (text[n] == '\n') {
+              ++line;
+              line_begin = n + 1;
+            }
+          }
+          if (n < text.size() && static_cast<unsigned char>(text[n]) >= 0x80) {
+            fail(n,
+                 "a non-ASCII character right after a line-ending backslash in a multi-line "
+                 "string, which toml++ 3.3.0 cannot read; begin the line with an ASCII character");
+          }
+          k = n - 1;
+        } else if (at(k, "\"\"\"")) {
+          for (k += 2; k + 1 < text.size() && text[k + 1] == '"';)
+            ++k;  // up to two quotes of the content stand before the closing ones
+          state = State::normal;
+          previous = '"';
+        }
+        break;
+      case State::multi_literal:
+        if (at(k, "'''")) {
+          for (k += 2; k + 1 < text.size() && text[k + 1] == '\'';)
+            ++k;
+          state = State::normal;
+          previous = '\'';
+        }
+        break;
+    }
+  }
 }
 
 }  // namespace
@@ -37,6 +177,7 @@ SceneError::SceneError(std::string file, int line, int column, const std::string
       message_(message) {}
 
 toml::table parse_toml_text(std::string_view text, const std::string& file_name) {
+  reject_input_tomlplusplus_mishandles(text, file_name);
   try {
     return toml::parse(text, std::string_view(file_name));
   } catch (const toml::parse_error& e) {

@@ -348,11 +348,13 @@ std::map<std::string, double> uniaxial_material_parameters(
     const std::map<std::string, double>& user_parameters) {
   std::map<std::string, double> parameters;
   const auto& specs = material_parameters(model);
-  for (const auto& [name, value] : protocol.activation) {
+  // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda.
+  for (const auto& entry : protocol.activation) {
+    const std::string& name = entry.first;
     const bool known = std::any_of(specs.begin(), specs.end(),
                                    [&](const ParameterSpec& s) { return s.name == name; });
     if (known)
-      parameters[name] = value;
+      parameters[name] = entry.second;
   }
   for (const auto& [name, value] : user_parameters)
     parameters.insert_or_assign(name, value);

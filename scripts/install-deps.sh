@@ -17,6 +17,9 @@ packages=(
   libgtest-dev libgmock-dev         # unit tests
   occt-misc                         # real IGES files written by other tools (hammer.iges) for reader tests
   libbenchmark-dev                  # bench/
+  clang-14 libclang-rt-14-dev       # scripts/fuzz.sh: clang with libFuzzer and the sanitizer runtimes
+  libomp-14-dev llvm-14             # clang's OpenMP (the project requires OpenMP); llvm-symbolizer
+                                    # for readable fuzzer stack traces
   python3 python3-numpy python3-matplotlib python3-h5py  # validation figures (h5py reads fields.h5)
 )
 

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -408,6 +409,73 @@ TEST_F(Iges, DamagedParameterDataNamesTheEntity) {
   std::ofstream(file("bad.igs"), std::ios::binary) << text;
   const std::string message = error_of(file("bad.igs"));
   EXPECT_NE(message.find("directory entry 1"), std::string::npos) << message;
+}
+
+// A seed of fuzz/iges_reader_fuzzer: one trimmed B-spline face of hammer.iges (occt-misc) as
+// OpenCASCADE writes it, as a trimmed surface (144 over 128, 142, 102, 126) or as a B-rep (510
+// over 128, 508 loops, 504 edges, 502 vertices, 126 curves).
+fs::path hammer_face(bool brep) {
+  return fs::path(ISOMUSCLE_SOURCE_DIR) / "fuzz" / "corpus" / "iges_reader" /
+         (brep ? "occt_hammer_face_brep.igs" : "occt_hammer_face.igs");
+}
+
+// The error of reading a copy of `source` that `damage` changed in place (columns intact).
+std::string error_of_damaged(const fs::path& source, const fs::path& copy,
+                             const std::function<void(std::string&)>& damage) {
+  std::ifstream in(source, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  damage(text);
+  std::ofstream(copy, std::ios::binary) << text;
+  return error_of(copy);
+}
+
+// The trimming curves (entity 126) of a CAD face are checked as well: fuzz/iges_reader_fuzzer found
+// OpenCASCADE 7.6 dereferencing a null array on a 126 whose degree exceeds its poles
+// (fuzz/regressions/iges_reader/occt-126-degree-beyond-poles.igs). The check names the entity.
+TEST_F(Iges, DamagedTrimmingCurveIsNamedBeforeOpenCascadeReadsIt) {
+  ASSERT_EQ(read_iges_surfaces(hammer_face(false)).at(0).parent_type, 144);
+  const std::string message =
+      error_of_damaged(hammer_face(false), file("bad_curve.igs"), [](std::string& text) {
+        const std::size_t record = text.rfind('\n', text.find("0000019P0000100")) + 1;
+        ASSERT_EQ(text.compare(record, 9, "126,21,3,"), 0);
+        text.replace(record, 9, "126,2,31,");  // degree 31 with 3 poles
+      });
+  EXPECT_NE(message.find("directory entry 19 (type 126)"), std::string::npos) << message;
+  EXPECT_NE(message.find("impossible sizes K = 2, M = 31"), std::string::npos) << message;
+}
+
+// A directory-entry pointer must name an entity of the type its field allows: OpenCASCADE 7.6
+// follows them unchecked, and a view pointer to a B-rep face made a reference cycle it never frees
+// (found by fuzz/iges_reader_fuzzer:
+// fuzz/regressions/iges_reader/occt-leak-view-pointer-to-face.igs).
+TEST_F(Iges, DirectoryPointerToAnEntityOfTheWrongTypeIsNamed) {
+  ASSERT_EQ(read_iges_surfaces(hammer_face(true)).at(0).parent_type, 510);
+  const std::string message =
+      error_of_damaged(hammer_face(true), file("bad_view.igs"), [](std::string& text) {
+        const std::size_t record = text.rfind('\n', text.find("D0000019")) + 1;
+        ASSERT_EQ(text.compare(record, 8, "     126"), 0);
+        text.replace(record + 40, 8, "       1");  // the view field (columns 41-48): the face
+      });
+  EXPECT_NE(message.find("directory entry 19 (type 126): view pointer names directory entry 1 "
+                         "of type 510"),
+            std::string::npos)
+      << message;
+}
+
+// The pointers inside the B-rep entities' parameters must name entities: OpenCASCADE 7.6
+// dereferences the null entity it makes of one that does not (found by fuzz/iges_reader_fuzzer:
+// fuzz/regressions/iges_reader/occt-508-loop-edge-pointer-empty.igs).
+TEST_F(Iges, BrepPointerToNoEntityIsNamed) {
+  const std::string message =
+      error_of_damaged(hammer_face(true), file("bad_loop.igs"), [](std::string& text) {
+        const std::size_t loop = text.find("508,3,0,7,");
+        ASSERT_NE(loop, std::string::npos);
+        text.replace(loop, 10, "508,3,0,8,");  // the first edge list: 8 is no directory entry
+      });
+  EXPECT_NE(message.find("directory entry 5 (type 508): parameter 4: pointer '8' names no "
+                         "directory entry"),
+            std::string::npos)
+      << message;
 }
 
 TEST(IgesUnits, ParseUnit) {

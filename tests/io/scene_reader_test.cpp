@@ -164,6 +164,36 @@ TEST(SceneReader, SyntaxErrorsCarryLineAndColumn) {
   EXPECT_NE(std::string(twice.what()).find("end"), std::string::npos) << twice.what();
 }
 
+// A non-ASCII character where toml++ 3.3.0 asks whether it is whitespace, which is undefined
+// behaviour there (found by fuzz/scene_parser_fuzzer; fuzz/regressions/scene_parser/), is a syntax
+// error at its line and column; non-ASCII text in strings and comments, and TOML that only looks
+// like the bad cases (quotes and brackets in strings, nested arrays), still parses.
+TEST(SceneReader, NonAsciiOutsideStringsIsASyntaxErrorBeforeTomlPlusPlusSeesIt) {
+  const auto error = [](const std::string& text) {
+    return scene_error([&] { parse_toml_text(text, "scene.toml"); });
+  };
+  EXPECT_STREQ(error("[geometry]\niges\xd0\xa7 = \"barrel.igs\"\n").what(),
+               "scene.toml:2:5: TOML syntax error: a non-ASCII character outside a string or "
+               "comment");
+  EXPECT_EQ(error("dt = 5'\xc2\xb5s'\n").column(), 8);           // no string starts after 5
+  EXPECT_EQ(error("n = 0='\xc4\x91'\n").column(), 8);            // nor inside the value 0='
+  EXPECT_EQ(error("s = \"\"\"\\\xc2\xa7\"\"\"\n").column(), 9);  // not an escape
+  const SceneError backslash = error("s = \"\"\"\\\n  \xc2\xa7\"\"\"\n");
+  EXPECT_EQ(backslash.line(), 2);
+  EXPECT_EQ(backslash.column(), 3);
+  EXPECT_NO_THROW(
+      parse_toml_text("\xEF\xBB\xBF# r\xc3\xa9sum\xc3\xa9, 5 \xc2\xb5m\n"
+                      "description = \"r\xc3\xa9sum\xc3\xa9 \\\" \xd0\xa7\"  # \xc2\xb0\n"
+                      "quoted = '\xc2\xb5 \\'\n"
+                      "text = \"\"\"\n\xd0\xa7 \\\n  more \xc2\xb5\"\"\"\"\n"
+                      "raw = '''\n\xd0\xa7'''\n"
+                      "times = [\n  [\"\xc2\xb5\", '\xc2\xb0'],\n  {a.\"\xc3\xa9\" = 1},\n]\n"
+                      "[ \"t\xc3\xa9\" . '\xc2\xb5' ]\n"
+                      "[[probe]]\n"
+                      "name = \"tip\"\n",
+                      "scene.toml"));
+}
+
 TEST(SceneReader, ArraysCheckLengthAndElementsAtTheElementsLine) {
   const std::string text =
       "[fibres]\n"
