@@ -175,8 +175,9 @@ void MaterialSettings::validate() const {
     names.push_back(spec.name);
   for (const auto& [name, value] : parameters) {
     const std::string key = "parameters." + name;
-    const auto spec =
-        std::find_if(specs.begin(), specs.end(), [&](const auto& s) { return s.name == name; });
+    // An init-capture: clang 14 (scripts/fuzz.sh) cannot capture a structured binding.
+    const auto spec = std::find_if(specs.begin(), specs.end(),
+                                   [&name = name](const auto& s) { return s.name == name; });
     if (spec == specs.end()) {
       std::string detail = "is not a parameter of model \"" + model + "\"";
       const std::string near = closest_match(name, names);

@@ -178,6 +178,7 @@ TEST(SceneReader, NonAsciiOutsideStringsIsASyntaxErrorBeforeTomlPlusPlusSeesIt) 
   EXPECT_EQ(error("dt = 5'\xc2\xb5s'\n").column(), 8);           // no string starts after 5
   EXPECT_EQ(error("n = 0='\xc4\x91'\n").column(), 8);            // nor inside the value 0='
   EXPECT_EQ(error("s = \"\"\"\\\xc2\xa7\"\"\"\n").column(), 9);  // not an escape
+  EXPECT_EQ(error("s = \"\"\"\\ \xc2\xb5\"\"\"\n").column(), 10);
   const SceneError backslash = error("s = \"\"\"\\\n  \xc2\xa7\"\"\"\n");
   EXPECT_EQ(backslash.line(), 2);
   EXPECT_EQ(backslash.column(), 3);
