@@ -20,6 +20,16 @@ struct JacobianAt {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
 };
 
+// The committed state's smallest J of a discretisation's problem (iga::Problem, tet::TetProblem:
+// committed_min_jacobian() and space().position(element, point)) as a JacobianAt.
+template <class Problem>
+std::optional<JacobianAt> committed_min_jacobian_of(const Problem& problem) {
+  const auto& m = problem.committed_min_jacobian();
+  if (!m.found())
+    return std::nullopt;
+  return JacobianAt{m.value, problem.space().position(m.element, m.point)};
+}
+
 class RunModel {
  public:
   virtual ~RunModel() = default;

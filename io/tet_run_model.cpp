@@ -79,10 +79,7 @@ class TetRunModel final : public RunModel {
 
   double committed_time() const override { return model_.problem->committed_time(); }
   std::optional<JacobianAt> committed_min_jacobian() const override {
-    const continuum::JacobianMinimum& m = model_.problem->committed_min_jacobian();
-    if (!m.found())
-      return std::nullopt;
-    return JacobianAt{m.value, model_.problem->space().position(m.element, m.point)};
+    return committed_min_jacobian_of(*model_.problem);
   }
   double current_volume() const override {
     return model_.problem->current_volume(model_.problem->committed_displacement());
