@@ -265,27 +265,21 @@ def non_finite_in_json(x):
 
 
 def solution_steps(path):
+    """(output steps in solution.h5, whether all its reals are finite); (0, True) without one: a
+    missing file is not a NaN (a failure that loses its last state is caught by clear_failure)."""
     import h5py
     import numpy as np
     if not os.path.exists(path):
-        return 0, False
+        return 0, True
     with h5py.File(path, "r") as f:
-        steps = 0
         finite = True
 
         def visit(name, obj):
-            nonlocal steps, finite
+            nonlocal finite
             if isinstance(obj, h5py.Dataset) and obj.dtype.kind == "f":
-                if not np.all(np.isfinite(obj[()])):
-                    finite = False
+                finite = finite and bool(np.all(np.isfinite(obj[()])))
         f.visititems(visit)
-        if "times" in f:
-            steps = len(f["times"])
-        else:
-            for key in f.keys():
-                if key.startswith("step") or key == "displacements":
-                    steps += 1
-        return steps, finite
+        return sum(1 for key in f.keys() if key.startswith("step_")), finite
 
 
 def run_cell(exe, scene, out_dir, limit):
@@ -338,8 +332,8 @@ def read_cell(out_dir, proc):
     row["nan_in_outputs"] = row["nan_in_outputs"] or not h5_finite
     row["solution_steps"] = steps_kept
     if s is None:
-        row.update(status="no summary", reason=proc["stderr"].strip().splitlines()[-1:]
-                   and proc["stderr"].strip().splitlines()[-1] or "")
+        lines = proc["stderr"].strip().splitlines()
+        row.update(status="no summary", reason=lines[-1] if lines else "")
         return row
     row["status"] = s["status"]
     row["reason"] = s.get("reason") or ""
