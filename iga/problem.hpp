@@ -139,18 +139,20 @@ class Problem : public solver::NonlinearProblem {
   double current_volume(const Eigen::VectorXd& u_full) const;
   // Displacement at a parametric point (m).
   Eigen::Vector3d displacement_at(const Eigen::VectorXd& u_full, const Eigen::Vector3d& xi) const;
-  // Stress, J, fibre at a parametric point of the COMMITTED state: the law is evaluated at F(xi)
-  // with the history and fibre of the nearest quadrature point of its element, as it was at the
-  // start of the committed step (so at a quadrature point this reproduces the converged stress
-  // exactly, also for rate-dependent laws); for the mixed formulation with p~(xi), J~(xi) of the
-  // element. Throws std::invalid_argument on the collapsed axis (det dX/dxi = 0, F undefined)
-  // and std::runtime_error when the law fails there.
+  // Stress, J, fibre at a parametric point of the COMMITTED state: sigma, J~, p~ and the reference
+  // fibre interpolated from the converged values at the quadrature points of its element
+  // (quadrature_point_interpolation.hpp; exact at a quadrature point, also for rate-dependent
+  // laws), u and F evaluated at xi. Throws std::invalid_argument on the collapsed axis
+  // (det dX/dxi = 0, F undefined) and std::runtime_error when the committed state fails there.
   PointState state_at(const Eigen::Vector3d& xi) const;
-  // The same at quadrature point q of element e.
+  // The same at quadrature point q of element e (the converged values).
   PointState state_at_point(int e, int q) const;
   // The states at all quadrature points of element e, from one kernel pass over the element
   // (exactly the converged values).
   std::vector<PointState> element_states(int e) const;
+  // state_at(xi) from element e's element_states (to evaluate many points of one element).
+  PointState interpolate_state(int e, std::span<const PointState> states,
+                               const Eigen::Vector3d& xi) const;
   Tessellation tessellate(const Eigen::VectorXd& u_full, int subdivisions) const;
 
  private:
@@ -162,7 +164,6 @@ class Problem : public solver::NonlinearProblem {
                                     const Eigen::VectorXd* increment = nullptr,
                                     Eigen::VectorXd* K_increment = nullptr);
   std::string describe_failure(int e, const KernelStatus& s) const;
-  PointState evaluate_state(int e, const Eigen::Vector3d& xi, int history_point) const;
   // Runs the element kernel (no tangent) at the committed state with the pre-step history into a
   // workspace of its own; throws std::runtime_error when the kernel fails.
   void committed_element_pass(int e, ElementWorkspace& ws) const;

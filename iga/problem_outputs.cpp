@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "iga/problem.hpp"
+#include "iga/quadrature_point_interpolation.hpp"
 
 namespace isomuscle::iga {
 
@@ -41,19 +42,8 @@ Tessellation Problem::tessellate(const Eigen::VectorXd& u_full, int subdivisions
 
 PointState Problem::state_at(const Eigen::Vector3d& xi) const {
   const int e = space_.locate(xi);
-  const Element& el = space_.element(e);
-  // Nearest quadrature point in the element's reference coordinates.
-  const Eigen::Vector3d t = element_reference_coordinates(el, xi);
-  int best = 0;
-  double best_d = std::numeric_limits<double>::infinity();
-  for (int q = 0; q < space_.points_per_element(); ++q) {
-    const double d = (element_reference_coordinates(el, space_.parametric(e, q)) - t).squaredNorm();
-    if (d < best_d) {
-      best_d = d;
-      best = q;
-    }
-  }
-  return evaluate_state(e, xi, best);
+  const std::vector<PointState> states = element_states(e);
+  return interpolate_state(e, states, xi);
 }
 
 PointState Problem::state_at_point(int e, int q) const {
@@ -61,13 +51,21 @@ PointState Problem::state_at_point(int e, int q) const {
     throw std::invalid_argument("state_at_point: element " + std::to_string(e) + " or point " +
                                 std::to_string(q) + " out of range");
   }
-  return evaluate_state(e, space_.parametric(e, q), q);
+  return element_states(e)[static_cast<std::size_t>(q)];
 }
 
-// S from the law at F(xi) with the pre-step history of point qh (mixed: S_iso + p~ J C^-1 with the
-// element's projections, element_kernels.hpp); sigma = F S F^T / J (thesis 5.41), a = F N / |F N|
-// (thesis 5.30).
-PointState Problem::evaluate_state(int e, const Eigen::Vector3d& xi, int qh) const {
+// The converged sigma, J~, p~ and reference fibre N interpolated from the quadrature points
+// (quadrature_point_interpolation.hpp: never the law at F(xi) with a neighbour's history), with the
+// exact u(xi), F(xi); S = J F^-1 sigma F^-T (thesis 5.41), a = F N / |F N| (thesis 5.30) at xi.
+// Interpolating sigma (not S) keeps the law's Cauchy parts, interpolated alike by the stress
+// probes, summing to the total.
+PointState Problem::interpolate_state(int e, std::span<const PointState> states,
+                                      const Eigen::Vector3d& xi) const {
+  if (states.size() != static_cast<std::size_t>(space_.points_per_element())) {
+    throw std::invalid_argument("interpolate_state: " + std::to_string(states.size()) +
+                                " states, expected one per quadrature point");
+  }
+  const std::vector<double> w = quadrature_point_weights(space_, e, xi);
   PointState st;
   st.field = evaluate_field(space_, dofs_, committed_full_, xi);
   if (!st.field.regular) {
@@ -85,44 +83,21 @@ PointState Problem::evaluate_state(int e, const Eigen::Vector3d& xi, int qh) con
         << " <= 0";
     throw std::runtime_error(msg.str());
   }
-  const int nqp = space_.points_per_element();
-  const std::size_t hs = static_cast<std::size_t>(history_size_);
-  const std::size_t point = static_cast<std::size_t>(e) * nqp + static_cast<std::size_t>(qh);
-  st.fibre = fibres_[point];
-  materials::PointInput in;
-  in.F = F;
-  in.fibre = st.fibre;
-  in.time = committed_time_;
-  in.dt = committed_dt_;
-  std::vector<double> trial(hs);
-  if (hs > 0) {
-    in.history = std::span<const double>(history_previous_.data() + point * hs, hs);
+  Eigen::Matrix3d sigma = Eigen::Matrix3d::Zero();
+  st.J_bar = 0.0;
+  st.p_bar = 0.0;
+  Eigen::Vector3d N = Eigen::Vector3d::Zero();
+  for (std::size_t q = 0; q < w.size(); ++q) {
+    sigma += w[q] * states[q].cauchy;
+    st.J_bar += w[q] * states[q].J_bar;
+    st.p_bar += w[q] * states[q].p_bar;
+    N += w[q] * states[q].fibre;
   }
-  materials::PointResult res;
-  res.history = std::span<double>(trial.data(), hs);
-  materials::PointStatus status;
-  st.J_bar = st.J;
-  if (formulation_ == Formulation::mixed) {
-    ElementWorkspace ws(space_.functions_per_element(), nqp, pressure_.size());
-    committed_element_pass(e, ws);
-    std::vector<double> N(pressure_.size());
-    pressure_.evaluate(element_reference_coordinates(space_.element(e), xi), N.data());
-    const Eigen::Map<const Eigen::VectorXd> Nv(N.data(), pressure_.size());
-    st.J_bar = Nv.dot(ws.theta);
-    st.p_bar = Nv.dot(ws.pi);
-    status = law_.evaluate_isochoric(in, res, false);
-    const Eigen::Matrix3d F_inv = F.inverse();
-    st.S = res.S + (st.p_bar * st.J) * (F_inv * F_inv.transpose());
-  } else {
-    status = law_.evaluate(in, res, false);
-    st.S = res.S;
-  }
-  if (status != materials::PointStatus::ok || !st.S.allFinite()) {
-    std::ostringstream msg;
-    msg << "state at xi = (" << xi[0] << ", " << xi[1] << ", " << xi[2] << "): material law '"
-        << law_.name() << "' failed (" << materials::to_string(status) << ")";
-    throw std::runtime_error(msg.str());
-  }
+  if (formulation_ != Formulation::mixed)
+    st.J_bar = st.J;
+  st.fibre = N.normalized();
+  const Eigen::Matrix3d F_inv = F.inverse();
+  st.S = st.J * F_inv * sigma * F_inv.transpose();
   continuum::complete_point_stress(F, st);
   return st;
 }

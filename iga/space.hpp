@@ -55,6 +55,8 @@ class Space {
   int functions_per_element() const { return nen_; }
   // Quadrature points per element (the tensor rule).
   int points_per_element() const { return nqp_; }
+  // Gauss–Legendre points per direction of the tensor rule; point q = qu + nu (qv + nv qw).
+  const std::array<int, 3>& points_per_direction() const { return npts_; }
   int num_points() const { return num_elements() * nqp_; }
   // Number of non-empty spans per direction.
   const std::array<int, 3>& element_counts() const { return counts_; }
@@ -103,6 +105,7 @@ class Space {
   std::array<std::vector<int>, 3> span_of_position_;  // non-empty span indices per direction
   int nen_ = 0;
   int nqp_ = 0;
+  std::array<int, 3> npts_ = {0, 0, 0};
   std::vector<Element> elements_;
   std::vector<int> connectivity_;
   std::vector<double> values_;

@@ -53,6 +53,10 @@ void IgaFieldOutput::write(const iga::Problem& problem) {
     OutputField j{"J", FieldCentre::cell, FieldMatrix(want_j ? n_cells : 0, 1)};
     OutputField sigma{"cauchy_stress", FieldCentre::cell, FieldMatrix(want_sigma ? n_cells : 0, 9)};
     OutputField fibre{"fibre", FieldCentre::cell, FieldMatrix(want_fibre ? n_cells : 0, 3)};
+    // The cells of one knot span come one after another: its quadrature point states are
+    // computed once (one kernel pass) and interpolated to each cell centre.
+    int states_element = -1;
+    std::vector<iga::PointState> states;
     for (Eigen::Index c = 0; c < n_cells; ++c) {
       Eigen::Vector3d xi = Eigen::Vector3d::Zero();
       for (int k : tess.hexahedra[static_cast<std::size_t>(c)])
@@ -67,7 +71,11 @@ void IgaFieldOutput::write(const iga::Problem& problem) {
       if (want_j)
         j.values(c, 0) = p.F.determinant();
       if (want_sigma) {
-        const iga::PointState st = problem.state_at(xi);
+        if (p.element != states_element) {
+          states = problem.element_states(p.element);
+          states_element = p.element;
+        }
+        const iga::PointState st = problem.interpolate_state(p.element, states, xi);
         for (int r = 0; r < 3; ++r)
           for (int s = 0; s < 3; ++s)
             sigma.values(c, 3 * r + s) = st.cauchy(r, s);

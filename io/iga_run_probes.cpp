@@ -9,6 +9,7 @@
 
 #include "geometry/point_inversion.hpp"
 #include "iga/pressure_space.hpp"
+#include "iga/quadrature_point_interpolation.hpp"
 #include "io/setting_check.hpp"
 
 namespace isomuscle::io {
@@ -131,6 +132,10 @@ IgaProbes::IgaProbes(const std::vector<ProbeSettings>& probes, const IgaModel& m
                            "undefined; stresses are taken at the nearest quadrature point, "
                            "X = " +
                            describe_point(space.position(p.element, p.point)) + " m");
+          p.weights.assign(static_cast<std::size_t>(space.points_per_element()), 0.0);
+          p.weights[static_cast<std::size_t>(p.point)] = 1.0;
+        } else {
+          p.weights = iga::quadrature_point_weights(space, p.element, p.xi);
         }
         if (parts_from_law_) {
           for (const std::string& part : part_names_) {
@@ -156,44 +161,59 @@ void IgaProbes::before_commit(iga::Problem& problem, const Eigen::VectorXd& u) {
   for (Probe& p : probes_) {
     if (p.settings.kind != ProbeKind::stress_parts || problem.law().history_size() == 0)
       continue;
-    const int q = p.point >= 0 ? p.point : nearest_point(space, p.element, p.xi);
-    const auto h = problem.committed_history(p.element, q);
-    p.history.assign(h.begin(), h.end());
+    p.history.clear();
+    for (int q = 0; q < space.points_per_element(); ++q) {
+      const auto h = problem.committed_history(p.element, q);
+      p.history.insert(p.history.end(), h.begin(), h.end());
+    }
   }
 }
 
-// a . sigma_part . a of every part and the total (thesis 3.44, 5.30, 5.41); returns the total.
+// a . sigma_part . a of every part and the total (thesis 3.44, 5.30, 5.41); returns the total. The
+// parts are the law's at each quadrature point of the element (its converged F and pre-step
+// history: exactly the assembled stress), interpolated to the point, and a is the deformed fibre
+// of the interpolated state there.
 double IgaProbes::stress_column_values(const iga::Problem& problem, const Probe& p,
                                        std::vector<double>& out, std::size_t at) const {
-  const iga::PointState st =
-      p.point >= 0 ? problem.state_at_point(p.element, p.point) : problem.state_at(p.xi);
+  const std::vector<iga::PointState> states = problem.element_states(p.element);
+  const iga::PointState st = p.point >= 0 ? states[static_cast<std::size_t>(p.point)]
+                                          : problem.interpolate_state(p.element, states, p.xi);
   const Eigen::Vector3d& a = st.fibre_deformed;
   if (parts_from_law_) {
     const materials::MaterialLaw& law = problem.law();
     const std::size_t hs = static_cast<std::size_t>(law.history_size());
     std::vector<double> trial(hs);
-    materials::PointInput in;
-    in.F = st.field.F;
-    in.fibre = st.fibre;
-    in.time = problem.committed_time();
-    in.dt = problem.dt();
-    in.history = std::span<const double>(p.history.data(), hs);
-    materials::PointResult res;
-    res.history = std::span<double>(trial.data(), hs);
-    const materials::PointStatus status = law.evaluate(in, res, false);
-    if (status != materials::PointStatus::ok) {
-      throw std::runtime_error("[[probe]] '" + p.settings.name + "': material law '" + law.name() +
-                               "' failed at the probe point (" + materials::to_string(status) +
-                               ")");
-    }
     std::vector<Eigen::Matrix3d> parts(part_names_.size(), Eigen::Matrix3d::Zero());
-    law.cauchy_parts(in, trial, parts);
-    for (std::size_t i = 0; i < part_names_.size(); ++i) {
-      if (part_names_[i] == "total")
+    std::vector<Eigen::Matrix3d> point_parts(part_names_.size());
+    for (std::size_t q = 0; q < states.size(); ++q) {
+      if (p.weights[q] == 0.0)
         continue;
-      if (replace_volumetric_ && part_names_[i] == "vol")
-        parts[i] = st.p_bar * Eigen::Matrix3d::Identity();
-      out[at++] = a.dot(parts[i] * a);
+      materials::PointInput in;
+      in.F = states[q].field.F;
+      in.fibre = states[q].fibre;
+      in.time = problem.committed_time();
+      in.dt = problem.dt();
+      if (hs > 0)
+        in.history = std::span<const double>(p.history.data() + q * hs, hs);
+      materials::PointResult res;
+      res.history = std::span<double>(trial.data(), hs);
+      const materials::PointStatus status = law.evaluate(in, res, false);
+      if (status != materials::PointStatus::ok) {
+        throw std::runtime_error("[[probe]] '" + p.settings.name + "': material law '" +
+                                 law.name() + "' failed at quadrature point " + std::to_string(q) +
+                                 " of the probe's element (" + materials::to_string(status) + ")");
+      }
+      std::fill(point_parts.begin(), point_parts.end(), Eigen::Matrix3d::Zero());
+      law.cauchy_parts(in, trial, point_parts);
+      for (std::size_t i = 0; i < parts.size(); ++i) {
+        if (replace_volumetric_ && part_names_[i] == "vol")
+          point_parts[i] = states[q].p_bar * Eigen::Matrix3d::Identity();
+        parts[i] += p.weights[q] * point_parts[i];
+      }
+    }
+    for (std::size_t i = 0; i < part_names_.size(); ++i) {
+      if (part_names_[i] != "total")
+        out[at++] = a.dot(parts[i] * a);
     }
   }
   const double total = a.dot(st.cauchy * a);

@@ -16,11 +16,13 @@
 //                                           vol for the Hill laws), Pa, and <name>.total
 //
 // Points are given physically (point inversion, geometry/point_inversion.hpp) or parametrically
-// (xi in [0, 1]^3, scene naming: iga_run_setup.hpp). Stress is evaluated at the point with the
-// history of the nearest quadrature point (iga::Problem::state_at); on the collapsed axis of a
-// shrink solid, where F is undefined, at the nearest quadrature point instead (a note says where).
-// For the mixed formulation the volumetric part is p~ I (the element's pressure), so the parts
-// always sum to the total stress of the solution.
+// (xi in [0, 1]^3, scene naming: iga_run_setup.hpp). Stress parts are the law's converged parts at
+// the quadrature points of the point's element, interpolated to the point
+// (iga/quadrature_point_interpolation.hpp, as iga::Problem::state_at interpolates sigma) and taken
+// along the deformed fibre there; on the collapsed axis of a shrink solid, where F is undefined,
+// at the nearest quadrature point instead (a note says where). For the mixed formulation the
+// volumetric part is p~ I (the element's pressure), so the parts always sum to the total stress
+// of the solution.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -60,7 +62,8 @@ class IgaProbes {
     int element = -1;
     int point = -1;  // >= 0: evaluate at this quadrature point of element (axis fallback)
     std::vector<int> nodes;
-    std::vector<double> history;  // pre-step history of the stress point
+    std::vector<double> weights;  // stress point: interpolation weights of the element's points
+    std::vector<double> history;  // pre-step history of the element's quadrature points
     std::size_t first_column = 0;
   };
 
