@@ -285,20 +285,23 @@ constexpr double kVolumeBound = 2.2e5 * 1e-9 / 2.0;
 constexpr double kSupportForceBound = 1e-6;  // N
 
 // Cone (thesis 5.6.1): bottom fixed, the top's centre moves towards the base. The committed
-// example (32 elements) measured tip u_z(0.02 s) = -0.7705 mm (examples/cone/README.md); the
-// 8-element copy here measured -0.826 mm: 7 % more shortening on a mesh with 2 instead of 4 spans
-// along the cone, so it must lie within 15 % of the committed value. NURBS (generatrix) and
-// constant z fibres give "almost identical" deformations (thesis Fig. 5.20): measured 4 % apart.
+// example (128 elements, graded towards the base) measured tip u_z(0.02 s) = -0.7526 mm
+// (examples/cone/README.md); this copy with 2 uniform spans along (6 with the grading) and one
+// radial span, 24 elements, measured -0.7536 mm, so within 5 %. NURBS (generatrix) and constant z
+// fibres: 7 % apart at 0.02 s in the committed example, 1.4 % in this copy; within 10 %. (The top
+// rim's radial motion, a tenth of a millimetre by then, is left to the refinement study: on coarse
+// meshes it even has the wrong sign, validation/suite/README.md.)
 TEST_F(SlowExamples, ConeTopMovesTowardsTheFixedBase) {
-  const double reference = -7.705e-4;  // m, committed example at 0.02 s
+  const double reference = -7.526e-4;  // m, committed example at 0.02 s
   const Table nurbs = run_small("cone/contract.toml", "[0, 1, 0]");
   const Table z = run_small("cone/contract-zfibres.toml", "[0, 1, 0]");
   const double tip = nurbs.last("tip_z");
+  std::printf("cone tip at 0.02 s: NURBS fibres %.4f mm, z fibres %.4f mm\n", 1e3 * tip,
+              1e3 * z.last("tip_z"));
   EXPECT_LT(tip, 0.0);
-  EXPECT_NEAR(tip, reference, 0.15 * std::abs(reference));
+  EXPECT_NEAR(tip, reference, 0.05 * std::abs(reference));
   EXPECT_NEAR(z.last("tip_z"), tip, 0.10 * std::abs(tip));
   for (const Table* t : {&nurbs, &z}) {
-    EXPECT_LT(t->last("top_rim_x"), 0.0);  // the top rim follows the fibres inwards
     EXPECT_LT(std::abs(t->last("volume") / t->first("volume") - 1.0), kVolumeBound);
     EXPECT_LT(std::abs(t->last("base_force_z")), kSupportForceBound);
   }
