@@ -15,6 +15,7 @@
 
 #include <csignal>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -33,13 +34,28 @@ namespace {
 namespace fs = std::filesystem;
 
 volatile std::sig_atomic_t stop_signal = 0;
+// CLOCK_MONOTONIC seconds of the first stop signal (clock_gettime is async-signal-safe).
+volatile double first_signal_seconds = 0.0;
+
+double monotonic_seconds() {
+  timespec now{};
+  clock_gettime(CLOCK_MONOTONIC, &now);
+  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
+}
+
+// A signal within this time of the first is the same request delivered twice (GNU timeout sends
+// its signal to the command and then to its whole process group), not a second Ctrl-C.
+constexpr double kDuplicateSignalSeconds = 1.0;
 
 extern "C" void on_stop_signal(int signal_number) {
-  if (stop_signal != 0) {  // the second one: stop now
+  if (stop_signal != 0) {  // the second one: stop now, unless it is the first one again
+    if (monotonic_seconds() - first_signal_seconds < kDuplicateSignalSeconds)
+      return;
     std::signal(signal_number, SIG_DFL);
     std::raise(signal_number);
     return;
   }
+  first_signal_seconds = monotonic_seconds();
   stop_signal = signal_number;
 }
 

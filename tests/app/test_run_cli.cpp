@@ -334,7 +334,8 @@ TEST_F(RunCli, StepThatCannotConvergeKeepsTheConvergedSteps) {
 // SIGTERM (a batch system's time limit; SIGINT is Ctrl-C) stops the run after the step under way:
 // exit code 1, the summary says "interrupted" and the converged steps are in every file. The
 // contraction runs for 2 s of model time (tens of seconds of wall time); the signal comes after 1
-// s.
+// s. GNU timeout delivers it twice (to the command, then to its process group): the run must take
+// the duplicate for the same request, not for the "second signal: stop now" (it did, now and then).
 TEST_F(RunCli, SignalStopsTheRunAndKeepsTheConvergedSteps) {
   const fs::path scene =
       write("interrupted.toml",
