@@ -1,7 +1,6 @@
 // Output queries of iga::Problem: volume, point values, stresses, tessellation (problem.hpp).
 #include <Eigen/LU>
 #include <cmath>
-#include <limits>
 #include <sstream>
 #include <stdexcept>
 

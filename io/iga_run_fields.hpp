@@ -6,8 +6,8 @@
 //
 //   displacement   point field, m
 //   J              cell field, det F at the cell centre
-//   cauchy_stress  cell field, sigma = F S F^T / J (thesis 5.41) at the cell centre, Pa, S
-//                  interpolated from the converged values at the span's quadrature points
+//   cauchy_stress  cell field, Cauchy stress (thesis 5.41) at the cell centre, Pa, interpolated
+//                  from the converged values at the span's quadrature points
 //                  (iga::Problem::state_at); the mixed formulation's pressure p~ replaces U'(J)
 //   fibre          cell field, deformed fibre direction a = F N / |F N| (thesis 5.30), N of the
 //                  scene's fibre mode at the cell centre
