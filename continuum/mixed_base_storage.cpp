@@ -41,4 +41,10 @@ void MixedBaseStorage::store(int e, const ElementWorkspace& ws) {
   std::copy_n(ws.K_JJ.data(), m_ * m_, K_JJ_.data() + E * m_ * m_);
 }
 
+void MixedBaseStorage::anchor(int e, const double* ue) {
+  const std::size_t E = static_cast<std::size_t>(e);
+  std::copy_n(ue, n_, ue_.data() + E * n_);
+  std::fill_n(R_pi_.data() + E * m_, m_, 0.0);
+}
+
 }  // namespace isomuscle::continuum

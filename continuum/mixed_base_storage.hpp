@@ -21,6 +21,10 @@ class MixedBaseStorage {
   MixedBase view(int e) const;
   // Copies element e's next base from a mixed kernel pass with tangent.
   void store(int e, const ElementWorkspace& ws);
+  // Moves element e's base to the displacements ue (3 n_en doubles), keeping theta and pi and
+  // taking the constraint residual R_pi there as zero: the next evaluation at ue then sees the
+  // base's p~, J~ (the start of a step, mixed_bases.hpp).
+  void anchor(int e, const double* ue);
 
  private:
   std::size_t m_ = 0, n_ = 0;

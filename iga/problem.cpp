@@ -67,8 +67,7 @@ Problem::Problem(const Space& space, const DofMap& dofs, const materials::Materi
   colouring_ = solver::ElementColouring(solver::ElementDofs(element_all_dofs_));
   if (formulation_ == Formulation::mixed) {
     pressure_ = PressureSpace(space_, options_.pressure_degree);
-    base_.resize(nel, pressure_.size(), 3 * nen);
-    next_base_.resize(nel, pressure_.size(), 3 * nen);
+    bases_.resize(nel, pressure_.size(), 3 * nen);
   }
   set_threads(options_.threads);
 
@@ -111,7 +110,7 @@ void Problem::begin_step(double time, double dt) {
   time_ = time;
   dt_ = dt;
   trial_valid_ = false;
-  base_valid_ = false;  // the first iterate of a step projects exactly
+  bases_.begin_step();  // the first iterate starts from the committed p~, J~
   if (loads_.empty()) {
     f_ext_.setZero(dofs_.num_dofs());
   } else {
@@ -145,8 +144,7 @@ solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool w
   f_int_.setZero(dofs_.num_dofs());
   const int nqp = space_.points_per_element();
   const bool mixed = formulation_ == Formulation::mixed;
-  const bool from_base = mixed && use_base && base_valid_;
-  const bool store_base = mixed && want_tangent;
+  const continuum::MixedBases::Pass pass = bases_.begin_pass(use_base, want_tangent);
   const std::size_t hs = static_cast<std::size_t>(history_size_);
   thread_min_J_.assign(workspaces_.size(), continuum::JacobianMinimum{});
   auto body = [&](int e, int thread) -> solver::EvaluationStatus {
@@ -159,16 +157,17 @@ solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool w
         law_, fibres_, e, nqp, time_, dt_, history_committed_,
         history_trial_.data() + static_cast<std::size_t>(e) * nqp * hs);
     const ElementView view = element_view(space_, e);
-    const MixedBase base = from_base ? base_.view(e) : MixedBase{};
+    MixedBase base_view;
     const KernelStatus ks =
-        mixed ? mixed_kernel(view, ctx, pressure_, e, from_base ? &base : nullptr, want_tangent, ws)
+        mixed ? mixed_kernel(view, ctx, pressure_, e, bases_.element_base(pass, e, ws, base_view),
+                             want_tangent, ws)
               : displacement_kernel(view, ctx, want_tangent, ws);
     if (!ks.ok()) {
       return solver::EvaluationStatus::failure(describe_failure(e, ks));
     }
     thread_min_J_[thread].take_element(e, std::span<const double>(ws.J.data(), nqp));
-    if (store_base)
-      next_base_.store(e, ws);
+    if (mixed)
+      bases_.store(pass, e, ws);
     const auto& all = element_all_dofs_[e];
     for (std::size_t i = 0; i < all.size(); ++i) {
       f_int_[all[i]] += ws.fe[static_cast<Eigen::Index>(i)];
@@ -191,10 +190,8 @@ solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool w
   };
   const solver::EvaluationStatus status =
       solver::for_each_element_coloured(colouring_, options_.threads, body);
-  if (status.ok && store_base) {
-    std::swap(base_, next_base_);
-    base_valid_ = true;
-  }
+  if (mixed)
+    bases_.end_pass(pass, status.ok);
   return status;
 }
 
@@ -247,7 +244,8 @@ void Problem::commit_step(const Eigen::VectorXd& u) {
   history_previous_.swap(history_committed_);
   history_committed_ = history_trial_;
   committed_min_J_ = evaluated_min_J_;
-  base_valid_ = false;
+  if (formulation_ == Formulation::mixed)
+    bases_.commit();
   constraints_.expand(u, time_, committed_full_);
   committed_free_ = u;
   committed_time_ = time_;
@@ -271,11 +269,11 @@ solver::EvaluationStatus Problem::predict(Eigen::VectorXd& u) {
   solver::SparseMatrix& matrix = predictor_.zeroed_matrix(pattern_);
   Eigen::VectorXd K_increment;
   trial_valid_ = false;
-  base_valid_ = false;
+  // A tangent pass at the committed state with the exact projection: Newton's first iterate is
+  // linearised about its base (after a failure, about the committed one, anchored).
   const solver::EvaluationStatus status =
       assemble(old_full, true, matrix.valuePtr(), false, &increment, &K_increment);
   if (!status.ok) {
-    base_valid_ = false;
     return solver::EvaluationStatus::failure("predictor: " + status.message);
   }
   const Eigen::VectorXd full_rhs = f_int_ + K_increment - f_ext_;
@@ -284,7 +282,6 @@ solver::EvaluationStatus Problem::predict(Eigen::VectorXd& u) {
   Eigen::VectorXd du;
   const solver::EvaluationStatus solved = predictor_.solve(options_.storage, -rhs, du);
   if (!solved.ok) {
-    base_valid_ = false;
     return solved;
   }
   u += du;

@@ -22,7 +22,7 @@
 
 #include "continuum/formulation.hpp"
 #include "continuum/jacobian_minimum.hpp"
-#include "continuum/mixed_base_storage.hpp"
+#include "continuum/mixed_bases.hpp"
 #include "continuum/point_state.hpp"
 #include "iga/boundary_conditions.hpp"
 #include "iga/dof_map.hpp"
@@ -156,8 +156,8 @@ class Problem : public solver::NonlinearProblem {
   Tessellation tessellate(const Eigen::VectorXd& u_full, int subdivisions) const;
 
  private:
-  // use_base: mixed formulation, update p~, J~ from the base of the last tangent evaluation
-  // (when there is one) instead of projecting exactly (element_kernels.hpp). With increment
+  // use_base: mixed formulation, update p~, J~ from the current base (when there is one) instead
+  // of projecting exactly (element_kernels.hpp, continuum/mixed_bases.hpp). With increment
   // (full vector), also K_increment = K_all increment (all DOFs, element by element).
   solver::EvaluationStatus assemble(const Eigen::VectorXd& u_full, bool want_tangent,
                                     double* tangent_values, bool use_base,
@@ -198,11 +198,9 @@ class Problem : public solver::NonlinearProblem {
   Eigen::VectorXd committed_full_;
   Eigen::VectorXd committed_free_;
   Eigen::VectorXd last_u_;  // free values of the last successful evaluation (trial history)
-  // Mixed formulation: per element base state of the last tangent evaluation
-  // (continuum/mixed_base_storage.hpp), written to next_base_ during a tangent assembly and
-  // swapped in when the whole assembly succeeded.
-  continuum::MixedBaseStorage base_, next_base_;
-  bool base_valid_ = false;
+  // Mixed formulation: the bases p~, J~ are linearised about, within a step and from the
+  // committed state into the next (continuum/mixed_bases.hpp).
+  continuum::MixedBases bases_;
   solver::PredictorSystem predictor_;
   double last_time_ = 0.0;
   bool trial_valid_ = false;

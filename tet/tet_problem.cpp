@@ -101,8 +101,7 @@ TetProblem::TetProblem(const TetSpace& space, const materials::MaterialLaw& law,
   }
   workspaces_.assign(solver::resolve_thread_count(options_.threads), ElementWorkspace(nen, nqp, m));
   if (formulation_ == Formulation::mixed) {
-    base_.resize(space_.num_elements(), m, 3 * nen);
-    next_base_.resize(space_.num_elements(), m, 3 * nen);
+    bases_.resize(space_.num_elements(), m, 3 * nen);
   }
   history_size_ = law_.history_size();
   history_committed_.assign(static_cast<std::size_t>(space_.num_points()) * history_size_, 0.0);
@@ -126,7 +125,7 @@ void TetProblem::begin_step(double time, double dt) {
   time_ = time;
   dt_ = dt;
   trial_valid_ = false;
-  base_valid_ = false;  // the first iterate of a step projects exactly
+  bases_.begin_step();  // the first iterate starts from the committed p~, J~
   const TetMesh& mesh = space_.mesh();
   prescribed_.setZero(3 * mesh.num_nodes());
   for (const TetDirichlet& c : conditions_) {
@@ -205,8 +204,7 @@ solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, boo
   if (K_increment != nullptr)
     K_increment->setZero(u_full.size());
   const bool mixed = formulation_ == Formulation::mixed;
-  const bool from_base = mixed && use_base && base_valid_;
-  const bool store_base = mixed && want_tangent;
+  const continuum::MixedBases::Pass pass = bases_.begin_pass(use_base, want_tangent);
   const int nqp = space_.points_per_element();
   const int nen = space_.nodes_per_element();
   const std::size_t hs = static_cast<std::size_t>(history_size_);
@@ -220,14 +218,15 @@ solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, boo
     const MaterialContext ctx = continuum::element_material_context(
         law_, fibres_, e, nqp, time_, dt_, history_committed_,
         history_trial_.data() + static_cast<std::size_t>(e) * nqp * hs);
-    const continuum::MixedBase base = from_base ? base_.view(e) : continuum::MixedBase{};
-    const KernelStatus ks = element_kernel(e, ctx, want_tangent, ws, from_base ? &base : nullptr);
+    continuum::MixedBase base_view;
+    const KernelStatus ks = element_kernel(
+        e, ctx, want_tangent, ws, mixed ? bases_.element_base(pass, e, ws, base_view) : nullptr);
     if (!ks.ok()) {
       return solver::EvaluationStatus::failure(describe_failure(e, ks));
     }
     thread_min_J_[thread].take_element(e, std::span<const double>(ws.J.data(), nqp));
-    if (store_base)
-      next_base_.store(e, ws);
+    if (mixed)
+      bases_.store(pass, e, ws);
     const auto& dofs = element_dofs_[e];
     for (std::size_t i = 0; i < dofs.size(); ++i) {
       f_int_[dofs[i]] += ws.fe[static_cast<Eigen::Index>(i)];
@@ -248,10 +247,8 @@ solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, boo
   };
   const solver::EvaluationStatus status =
       solver::for_each_element_coloured(colouring_, options_.threads, body);
-  if (status.ok && store_base) {
-    std::swap(base_, next_base_);
-    base_valid_ = true;
-  }
+  if (mixed)
+    bases_.end_pass(pass, status.ok);
   return status;
 }
 
@@ -307,7 +304,8 @@ void TetProblem::commit_step(const Eigen::VectorXd& u) {
   history_previous_.swap(history_committed_);
   history_committed_ = history_trial_;
   committed_min_J_ = evaluated_min_J_;
-  base_valid_ = false;
+  if (formulation_ == Formulation::mixed)
+    bases_.commit();
   committed_full_ = full_displacement(u);
   committed_time_ = time_;
   committed_dt_ = dt_;
@@ -331,11 +329,11 @@ solver::EvaluationStatus TetProblem::predict(Eigen::VectorXd& u) {
   solver::SparseMatrix& matrix = predictor_.zeroed_matrix(pattern_);
   Eigen::VectorXd K_increment;
   trial_valid_ = false;
-  base_valid_ = false;
+  // A tangent pass at the committed state with the exact projection: Newton's first iterate is
+  // linearised about its base (after a failure, about the committed one, anchored).
   const solver::EvaluationStatus status =
       assemble(old_full, true, matrix.valuePtr(), false, &increment, &K_increment);
   if (!status.ok) {
-    base_valid_ = false;
     return solver::EvaluationStatus::failure("predictor: " + status.message);
   }
   Eigen::VectorXd rhs(num_free_);
@@ -345,7 +343,6 @@ solver::EvaluationStatus TetProblem::predict(Eigen::VectorXd& u) {
   Eigen::VectorXd du;
   const solver::EvaluationStatus solved = predictor_.solve(options_.storage, rhs, du);
   if (!solved.ok) {
-    base_valid_ = false;
     return solved;
   }
   u += du;

@@ -24,7 +24,7 @@
 #include "continuum/element_kernels.hpp"
 #include "continuum/formulation.hpp"
 #include "continuum/jacobian_minimum.hpp"
-#include "continuum/mixed_base_storage.hpp"
+#include "continuum/mixed_bases.hpp"
 #include "continuum/point_state.hpp"
 #include "materials/material_law.hpp"
 #include "solver/element_colouring.hpp"
@@ -134,8 +134,8 @@ class TetProblem : public solver::NonlinearProblem {
   Eigen::Vector3d sum_over_nodes(const Eigen::VectorXd& f_full, std::span<const int> nodes) const;
 
  private:
-  // use_base: mixed formulation, update p~, J~ from the base of the last tangent evaluation
-  // (when there is one) instead of projecting exactly (continuum/mixed_base_storage.hpp).
+  // use_base: mixed formulation, update p~, J~ from the current base (when there is one) instead
+  // of projecting exactly (continuum/mixed_bases.hpp).
   // With increment (all DOFs), also K_increment = K_all increment element by element.
   solver::EvaluationStatus assemble(const Eigen::VectorXd& u_full, bool want_tangent,
                                     double* values, bool use_base,
@@ -176,10 +176,9 @@ class TetProblem : public solver::NonlinearProblem {
   Eigen::VectorXd prescribed_;  // full vector: prescribed values at time_, zero elsewhere
   Eigen::VectorXd f_ext_, f_int_, u_full_, committed_full_, last_u_;
   bool trial_valid_ = false;
-  // Mixed formulation: the per-element base of the last tangent evaluation, valid within a step
-  // (the first iterate of a step projects exactly, as iga::Problem does).
-  continuum::MixedBaseStorage base_, next_base_;
-  bool base_valid_ = false;
+  // Mixed formulation: the bases p~, J~ are linearised about, within a step and from the
+  // committed state into the next (continuum/mixed_bases.hpp), as in iga::Problem.
+  continuum::MixedBases bases_;
   solver::PredictorSystem predictor_;
 };
 
