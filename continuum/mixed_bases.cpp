@@ -24,7 +24,6 @@ MixedBases::Pass MixedBases::begin_pass(bool use_base, bool want_tangent) const 
   pass.from_base = use_base && valid_;
   pass.anchor = pass.from_base && anchor_pending_;
   pass.store_tangent = want_tangent;
-  pass.store_evaluated = !want_tangent;
   return pass;
 }
 
@@ -41,7 +40,7 @@ const MixedBase* MixedBases::element_base(const Pass& pass, int e, const Element
 void MixedBases::store(const Pass& pass, int e, const ElementWorkspace& ws) {
   if (pass.store_tangent)
     next_base_.store(e, ws);
-  else if (pass.store_evaluated)
+  else
     evaluated_.store(e, ws);
 }
 
@@ -59,8 +58,10 @@ void MixedBases::end_pass(const Pass& pass, bool ok) {
   evaluated_in_base_ = pass.store_tangent;
 }
 
+// Swapped, not copied: base_ is rebuilt from committed_ at the next begin_step, and evaluated_ is
+// written again by any pass before the next commit.
 void MixedBases::commit() {
-  committed_ = evaluated_in_base_ ? base_ : evaluated_;
+  std::swap(committed_, evaluated_in_base_ ? base_ : evaluated_);
   have_committed_ = true;
   valid_ = false;
   anchor_pending_ = false;

@@ -31,10 +31,10 @@ class MixedBases {
  public:
   // What one assembly pass does with the bases.
   struct Pass {
-    bool from_base = false;        // update p~, J~ from the current base (else project exactly)
-    bool anchor = false;           // first evaluation of a step: move the base to this u first
-    bool store_tangent = false;    // a tangent evaluation: its states become the next base
-    bool store_evaluated = false;  // a residual evaluation: kept in case it is committed
+    bool from_base = false;      // update p~, J~ from the current base (else project exactly)
+    bool anchor = false;         // first evaluation of a step: move the base to this u first
+    bool store_tangent = false;  // a tangent evaluation: its states become the next base,
+                                 // else a residual one: kept in case it is committed
   };
 
   // Blocks for `elements` elements, m pressure functions and n = 3 n_en displacements each.
@@ -43,9 +43,6 @@ class MixedBases {
   // A step (or its retry after a cut) starts: the committed state's base, anchored at the first
   // evaluation (none before the first commit: that evaluation projects exactly).
   void begin_step();
-  // The next evaluation projects exactly (e.g. after a predictor pass at another state).
-  void invalidate() { valid_ = false; }
-
   // The pass of an assembly: use_base false forces the exact projection.
   Pass begin_pass(bool use_base, bool want_tangent) const;
   // Element e's base for the kernel (anchored at ws.ue first where the pass anchors), or nullptr
