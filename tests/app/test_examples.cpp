@@ -307,14 +307,15 @@ TEST_F(SlowExamples, ConeTopMovesTowardsTheFixedBase) {
   }
 }
 
-// Barrel (thesis 5.6.2, examples/barrel): as the cone. The committed contract.toml (32 elements)
-// measured tip u_z(0.02 s) = -0.7512 mm (-14.42 mm at 0.2 s, examples/barrel/README.md); the
-// 8-element copy here measured -0.783 mm (4 % more), so within 15 % as for the cone.
+// Barrel (thesis 5.6.2, examples/barrel): as the cone. The committed contract.toml (128 elements,
+// graded towards the fixed end) measured tip u_z(0.02 s) = -0.7455 mm (-13.93 mm at 0.2 s,
+// examples/barrel/README.md); this copy with 2 uniform spans along (6 with the grading) and one
+// radial span, 24 elements, measured -0.7509 mm (0.7 % more), so within 5 % as for the cone.
 TEST_F(SlowExamples, BarrelFreeEndMovesTowardsTheFixedEnd) {
-  const double reference = -7.512e-4;  // m, committed example at 0.02 s
+  const double reference = -7.455e-4;  // m, committed example at 0.02 s
   const Table t = run_small("barrel/contract.toml", "[0, 1, 0]");
   EXPECT_LT(t.last("tip_z"), 0.0);
-  EXPECT_NEAR(t.last("tip_z"), reference, 0.15 * std::abs(reference));
+  EXPECT_NEAR(t.last("tip_z"), reference, 0.05 * std::abs(reference));
   EXPECT_LT(std::abs(t.last("volume") / t.first("volume") - 1.0), kVolumeBound);
   EXPECT_LT(std::abs(t.last("fixed_end_force_z")), kSupportForceBound);
 }
@@ -325,7 +326,7 @@ TEST_F(SlowExamples, BarrelFreeEndMovesTowardsTheFixedEnd) {
 // component is constrained, act there), the ring shrinks (radial displacement of the centreline
 // < 0, the same at both ends of the quarter ring since the piece is mirror-symmetric about the
 // 45-degree plane), the tube thickens in z (incompressible) and the volume is kept. The committed
-// example (32 elements) measured ring_x(0.02 s) = -0.1948 mm; this 8-element copy within 10 %.
+// example (64 elements) measured ring_x(0.02 s) = -0.1945 mm; this 8-element copy within 10 %.
 TEST_F(SlowExamples, TorusEighthKeepsItsSymmetryPlanesAndShrinksItsRing) {
   std::string extra;
   const auto probe = [&](const std::string& name, const std::string& xi, const char* c) {
@@ -347,7 +348,7 @@ TEST_F(SlowExamples, TorusEighthKeepsItsSymmetryPlanesAndShrinksItsRing) {
   }
   const double ring = t.last("ring_x");
   EXPECT_LT(ring, 0.0);
-  EXPECT_NEAR(ring, -1.948e-4, 0.10 * 1.948e-4);
+  EXPECT_NEAR(ring, -1.945e-4, 0.10 * 1.945e-4);
   EXPECT_NEAR(t.last("ring_y"), ring, 1e-6 * std::abs(ring));
   EXPECT_LT(t.last("outer_x"), 0.0);
   EXPECT_LT(t.last("inner_x"), 0.0);

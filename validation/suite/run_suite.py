@@ -58,9 +58,11 @@ EXAMPLES = [
     {"name": "cone", "scenes": {"nurbs": "cone/contract.toml", "z": "cone/contract-zfibres.toml"},
      "refine": "v", "headline": ["tip_z", "top_rim_x"], "compare": ("nurbs", "z"),
      "view": (0, 2)},
+    # The barrel too (mesh graded towards its clamped end like the cone's): doubling the radial
+    # spans at level 2 changes the tip by 0.1 % (validation/suite/README.md).
     {"name": "barrel",
      "scenes": {"nurbs": "barrel/contract.toml", "z": "barrel/contract-zfibres.toml"},
-     "refine": "vw", "headline": ["tip_z"], "compare": ("nurbs", "z"), "view": (0, 2)},
+     "refine": "v", "headline": ["tip_z"], "compare": ("nurbs", "z"), "view": (0, 2)},
     {"name": "torus", "scenes": {"eighth": "torus/contract.toml"}, "refine": "vw",
      "headline": ["ring_x", "outer_x", "inner_x", "top_z"], "view": (0, 1)},
     {"name": "half_torus",
