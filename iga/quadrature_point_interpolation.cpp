@@ -3,7 +3,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "geometry/gauss_legendre.hpp"
 #include "iga/pressure_space.hpp"
 
 namespace isomuscle::iga {
@@ -42,7 +41,7 @@ std::vector<double> quadrature_point_weights(const Space& space, int e, const Ei
   const std::array<int, 3>& n = space.points_per_direction();
   std::array<std::vector<double>, 3> l;
   for (int d = 0; d < 3; ++d) {
-    l[d] = lagrange_values(geometry::gauss_legendre_rule(n[d]).points, t[d]);
+    l[d] = lagrange_values(space.rule(d).points, t[d]);
   }
   std::vector<double> w(static_cast<std::size_t>(space.points_per_element()));
   for (int qw = 0; qw < n[2]; ++qw) {

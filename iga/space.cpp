@@ -57,6 +57,7 @@ Space::Space(geometry::NurbsVolume volume, QuadratureOptions options)
   }
   nen_ = (volume_.degree(0) + 1) * (volume_.degree(1) + 1) * (volume_.degree(2) + 1);
   npts_ = npts;
+  rules_ = rules;
   nqp_ = npts[0] * npts[1] * npts[2];
   const int nel = counts_[0] * counts_[1] * counts_[2];
   const std::size_t npoint = static_cast<std::size_t>(nel) * static_cast<std::size_t>(nqp_);

@@ -18,6 +18,7 @@
 #include <span>
 #include <vector>
 
+#include "geometry/gauss_legendre.hpp"
 #include "geometry/nurbs_volume.hpp"
 
 namespace isomuscle::iga {
@@ -57,6 +58,10 @@ class Space {
   int points_per_element() const { return nqp_; }
   // Gauss–Legendre points per direction of the tensor rule; point q = qu + nu (qv + nv qw).
   const std::array<int, 3>& points_per_direction() const { return npts_; }
+  // The 1D rule of direction d (points_per_direction()[d] points on [-1, 1]), built once here so
+  // that per-point queries (quadrature_point_interpolation.hpp) do not rebuild it by Newton
+  // iteration on every call.
+  const geometry::GaussLegendreRule& rule(int d) const { return rules_[d]; }
   int num_points() const { return num_elements() * nqp_; }
   // Number of non-empty spans per direction.
   const std::array<int, 3>& element_counts() const { return counts_; }
@@ -106,6 +111,7 @@ class Space {
   int nen_ = 0;
   int nqp_ = 0;
   std::array<int, 3> npts_ = {0, 0, 0};
+  std::array<geometry::GaussLegendreRule, 3> rules_;
   std::vector<Element> elements_;
   std::vector<int> connectivity_;
   std::vector<double> values_;

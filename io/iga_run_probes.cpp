@@ -157,54 +157,36 @@ void IgaProbes::before_commit(iga::Problem& problem, const Eigen::VectorXd& u) {
     if (!status.ok)
       throw std::runtime_error("face reaction probes: " + status.message);
   }
-  const iga::Space& space = problem.space();
-  for (Probe& p : probes_) {
-    if (p.settings.kind != ProbeKind::stress_parts || problem.law().history_size() == 0)
-      continue;
-    p.history.clear();
-    for (int q = 0; q < space.points_per_element(); ++q) {
-      const auto h = problem.committed_history(p.element, q);
-      p.history.insert(p.history.end(), h.begin(), h.end());
-    }
-  }
 }
 
 // a . sigma_part . a of every part and the total (thesis 3.44, 5.30, 5.41); returns the total. The
-// parts are the law's at each quadrature point of the element (its converged F and pre-step
-// history: exactly the assembled stress), interpolated to the point, and a is the deformed fibre
-// of the interpolated state there.
+// parts are the law's at each quadrature point of the element, split from the one kernel pass that
+// gives the element's states (its converged F and the trial history the law wrote from the pre-step
+// history: exactly the assembled stress, the law evaluated once), interpolated to the point, and a
+// is the deformed fibre of the interpolated state there.
 double IgaProbes::stress_column_values(const iga::Problem& problem, const Probe& p,
                                        std::vector<double>& out, std::size_t at) const {
-  const std::vector<iga::PointState> states = problem.element_states(p.element);
+  std::vector<double> trial;
+  const std::vector<iga::PointState> states =
+      problem.element_states(p.element, parts_from_law_ ? &trial : nullptr);
   const iga::PointState st = p.point >= 0 ? states[static_cast<std::size_t>(p.point)]
                                           : problem.interpolate_state(p.element, states, p.xi);
   const Eigen::Vector3d& a = st.fibre_deformed;
   if (parts_from_law_) {
     const materials::MaterialLaw& law = problem.law();
     const std::size_t hs = static_cast<std::size_t>(law.history_size());
-    std::vector<double> trial(hs);
     std::vector<Eigen::Matrix3d> parts(part_names_.size(), Eigen::Matrix3d::Zero());
     std::vector<Eigen::Matrix3d> point_parts(part_names_.size());
+    materials::PointInput in;
+    in.time = problem.committed_time();
+    in.dt = problem.committed_dt();
     for (std::size_t q = 0; q < states.size(); ++q) {
       if (p.weights[q] == 0.0)
         continue;
-      materials::PointInput in;
       in.F = states[q].field.F;
       in.fibre = states[q].fibre;
-      in.time = problem.committed_time();
-      in.dt = problem.dt();
-      if (hs > 0)
-        in.history = std::span<const double>(p.history.data() + q * hs, hs);
-      materials::PointResult res;
-      res.history = std::span<double>(trial.data(), hs);
-      const materials::PointStatus status = law.evaluate(in, res, false);
-      if (status != materials::PointStatus::ok) {
-        throw std::runtime_error("[[probe]] '" + p.settings.name + "': material law '" +
-                                 law.name() + "' failed at quadrature point " + std::to_string(q) +
-                                 " of the probe's element (" + materials::to_string(status) + ")");
-      }
       std::fill(point_parts.begin(), point_parts.end(), Eigen::Matrix3d::Zero());
-      law.cauchy_parts(in, trial, point_parts);
+      law.cauchy_parts(in, std::span<const double>(trial.data() + q * hs, hs), point_parts);
       for (std::size_t i = 0; i < parts.size(); ++i) {
         if (replace_volumetric_ && part_names_[i] == "vol")
           point_parts[i] = states[q].p_bar * Eigen::Matrix3d::Identity();

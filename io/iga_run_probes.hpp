@@ -47,7 +47,7 @@ class IgaProbes {
   const std::vector<std::pair<std::string, Eigen::Vector3d>>& points() const { return points_; }
 
   // Called with the converged free values BEFORE the problem commits them: the internal force
-  // (reactions) of exactly the converged state and the pre-step history of stress points.
+  // (reactions) of exactly the converged state.
   void before_commit(iga::Problem& problem, const Eigen::VectorXd& u);
   // The value of every column at the committed state (after commit_step). Throws
   // std::runtime_error when the law cannot be evaluated at a stress point.
@@ -63,7 +63,6 @@ class IgaProbes {
     int point = -1;  // >= 0: evaluate at this quadrature point of element (axis fallback)
     std::vector<int> nodes;
     std::vector<double> weights;  // stress point: interpolation weights of the element's points
-    std::vector<double> history;  // pre-step history of the element's quadrature points
     std::size_t first_column = 0;
   };
 

@@ -63,14 +63,21 @@ class ScopedSeconds {
 //   are those of u (dr/dy = dr/du). Where there is no velocity yet (the first step, or after a
 //   held state) the problem's own predictor (iga::Problem::predict, linearised Dirichlet) instead:
 //   it moves the interior with the prescribed increment, so the first iterate does not squeeze the
-//   whole increment into the elements next to the moved face.
+//   whole increment into the elements next to the moved face. A step is held when no entry of its
+//   increment exceeds the round-off correction tolerance (NewtonSettings::correction_tolerance):
+//   a held step's "velocity" is the round-off of its solve (1e-20 m after a step that starts in
+//   equilibrium), and extrapolating it instead of predicting skipped the predictor at an activation
+//   onset after inactive steps, where the first Newton step from u_n is then rejected by the line
+//   search (it raises |r| 100-fold on its way into the quadratic basin) and the step was cut four
+//   times (chapter-3 set-up 3, examples/barrel/chapter3/README.md).
 // * a hook that runs on the converged state just before it is committed (exact reactions and the
 //   pre-step histories for the probes).
 class SteppedProblem final : public solver::NonlinearProblem {
  public:
-  SteppedProblem(solver::NonlinearProblem& problem,
+  SteppedProblem(solver::NonlinearProblem& problem, double held_tolerance,
                  std::function<void(const Eigen::VectorXd&)> before_commit)
       : problem_(problem),
+        held_tolerance_(held_tolerance),
         before_commit_(std::move(before_commit)),
         shift_committed_(Eigen::VectorXd::Zero(problem.size())),
         shift_(shift_committed_),
@@ -105,13 +112,18 @@ class SteppedProblem final : public solver::NonlinearProblem {
     if (before_commit_)
       before_commit_(u_);
     problem_.commit_step(u_);
-    velocity_ = (u_ - u_committed_) / dt_;
+    const Eigen::VectorXd increment = u_ - u_committed_;
+    if (increment.size() > 0 && increment.lpNorm<Eigen::Infinity>() <= held_tolerance_)
+      velocity_.setZero();  // held: predict the next step, do not extrapolate round-off
+    else
+      velocity_ = increment / dt_;
     u_committed_ = u_;
     shift_committed_ = shift_;
   }
 
  private:
   solver::NonlinearProblem& problem_;
+  double held_tolerance_;  // m: a step whose increment is below this in every entry is held
   std::function<void(const Eigen::VectorXd&)> before_commit_;
   Eigen::VectorXd shift_committed_, shift_, velocity_, u_committed_, u_;
   double dt_ = 0.0;
@@ -279,15 +291,17 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   std::optional<solver::TimeStepper> stepper;
   solver::TimeStepperResult stepped;
   try {
-    stepper.emplace(stepper_settings(scene.time, out_times), newton_settings(scene.solver, *model));
+    const solver::NewtonSettings newton = newton_settings(scene.solver, *model);
+    stepper.emplace(stepper_settings(scene.time, out_times), newton);
     if (!out_times.empty() && out_times.front() <= 0.0) {
       ScopedSeconds timer(wall.output);
       model->write_fields();  // the reference state at t = 0
     }
-    SteppedProblem stepped_problem(problem, [&](const Eigen::VectorXd& converged) {
-      ScopedSeconds timer(wall.output);
-      model->before_commit(converged);
-    });
+    SteppedProblem stepped_problem(problem, newton.correction_tolerance,
+                                   [&](const Eigen::VectorXd& converged) {
+                                     ScopedSeconds timer(wall.output);
+                                     model->before_commit(converged);
+                                   });
     const auto on_step = [&](const solver::StepInfo& info, const Eigen::VectorXd&) {
       ScopedSeconds timer(wall.output);
       ++steps;

@@ -371,7 +371,7 @@ TEST_F(RunCli, FixedStepGrowsBackToDtAfterACut) {
   const CliResult r = run("run " + scene.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json s = summary(out);
-  ASSERT_GE(s["step_cuts"].size(), 1u);
+  ASSERT_GE(s["step_cuts"].size(), 2u);
   const Table probes = read_csv(out / "probes.csv");
   double smallest = 1.0, largest_after_cut = 0.0;
   for (const auto& row : probes.rows) {
@@ -381,7 +381,7 @@ TEST_F(RunCli, FixedStepGrowsBackToDtAfterACut) {
     if (row[probes.column("time")] > 0.5)
       largest_after_cut = std::max(largest_after_cut, dt);
   }
-  EXPECT_LT(smallest, 0.025);  // cut at least twice
+  EXPECT_LE(smallest, 0.025 * (1.0 + 1e-12));  // cut at least twice: 0.1 -> 0.05 -> 0.025
   // Grown back (to 0.056 s) instead of keeping the cut size for the rest of the run.
   EXPECT_GT(largest_after_cut, 0.04);
   EXPECT_GT(largest_after_cut, 2.5 * smallest);
