@@ -150,10 +150,8 @@ class Problem : public solver::NonlinearProblem {
   // The same at quadrature point q of element e (the converged values).
   PointState state_at_point(int e, int q) const;
   // The states at all quadrature points of element e, from one kernel pass over the element
-  // (exactly the converged values). With trial_history, also the history the law wrote in that
-  // pass (point-major, history_size() per point): what a law's cauchy_parts needs, so that a
-  // caller splitting the stress does not evaluate the law a second time.
-  std::vector<PointState> element_states(int e, std::vector<double>* trial_history = nullptr) const;
+  // (exactly the converged values).
+  std::vector<PointState> element_states(int e) const;
   // state_at(xi) from element e's element_states (to evaluate many points of one element).
   PointState interpolate_state(int e, std::span<const PointState> states,
                                const Eigen::Vector3d& xi) const;
@@ -169,10 +167,8 @@ class Problem : public solver::NonlinearProblem {
                                     Eigen::VectorXd* K_increment = nullptr);
   std::string describe_failure(int e, const KernelStatus& s) const;
   // Runs the element kernel (no tangent) at the committed state with the pre-step history into a
-  // workspace of its own, the law's trial history into trial_history (resized to nqp x
-  // history_size()); throws std::runtime_error when the kernel fails.
-  void committed_element_pass(int e, ElementWorkspace& ws,
-                              std::vector<double>& trial_history) const;
+  // workspace of its own; throws std::runtime_error when the kernel fails.
+  void committed_element_pass(int e, ElementWorkspace& ws) const;
 
   const Space& space_;
   const DofMap& dofs_;

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
-#include <utility>
 
 #include "iga/problem.hpp"
 #include "iga/quadrature_point_interpolation.hpp"
@@ -102,18 +101,16 @@ PointState Problem::interpolate_state(int e, std::span<const PointState> states,
   return st;
 }
 
-void Problem::committed_element_pass(int e, ElementWorkspace& ws,
-                                     std::vector<double>& trial_history) const {
+void Problem::committed_element_pass(int e, ElementWorkspace& ws) const {
   const int nqp = space_.points_per_element();
   const std::size_t hs = static_cast<std::size_t>(history_size_);
   const auto cps = space_.control_points(e);
   for (std::size_t a = 0; a < cps.size(); ++a) {
     ws.ue.col(static_cast<Eigen::Index>(a)) = committed_full_.segment<3>(3 * dofs_.node(cps[a]));
   }
-  trial_history.assign(static_cast<std::size_t>(nqp) * hs, 0.0);
-  const MaterialContext ctx =
-      continuum::element_material_context(law_, fibres_, e, nqp, committed_time_, committed_dt_,
-                                          history_previous_, trial_history.data());
+  std::vector<double> scratch(static_cast<std::size_t>(nqp) * hs);
+  const MaterialContext ctx = continuum::element_material_context(
+      law_, fibres_, e, nqp, committed_time_, committed_dt_, history_previous_, scratch.data());
   const ElementView view = element_view(space_, e);
   const KernelStatus ks = formulation_ == Formulation::mixed
                               ? mixed_kernel(view, ctx, pressure_, e, nullptr, false, ws)
@@ -124,17 +121,14 @@ void Problem::committed_element_pass(int e, ElementWorkspace& ws,
 }
 
 // States at the quadrature points from one kernel pass: F, S, J (and J~, p~) as assembled.
-std::vector<PointState> Problem::element_states(int e, std::vector<double>* trial_history) const {
+std::vector<PointState> Problem::element_states(int e) const {
   if (e < 0 || e >= space_.num_elements()) {
     throw std::invalid_argument("element_states: element " + std::to_string(e) + " out of range");
   }
   const int nqp = space_.points_per_element();
   const bool mixed = formulation_ == Formulation::mixed;
   ElementWorkspace ws(space_.functions_per_element(), nqp, mixed ? pressure_.size() : 1);
-  std::vector<double> trial;
-  committed_element_pass(e, ws, trial);
-  if (trial_history != nullptr)
-    *trial_history = std::move(trial);
+  committed_element_pass(e, ws);
   std::vector<PointState> out(nqp);
   const auto cps = space_.control_points(e);
   for (int q = 0; q < nqp; ++q) {

@@ -160,21 +160,18 @@ void IgaProbes::before_commit(iga::Problem& problem, const Eigen::VectorXd& u) {
 }
 
 // a . sigma_part . a of every part and the total (thesis 3.44, 5.30, 5.41); returns the total. The
-// parts are the law's at each quadrature point of the element, split from the one kernel pass that
-// gives the element's states (its converged F and the trial history the law wrote from the pre-step
-// history: exactly the assembled stress, the law evaluated once), interpolated to the point, and a
-// is the deformed fibre of the interpolated state there.
+// parts are the law's at each quadrature point of the element, split with its converged F and the
+// committed history (the trial history the law wrote in the converged evaluation: exactly the
+// assembled stress, the law not evaluated again), interpolated to the point, and a is the deformed
+// fibre of the interpolated state there.
 double IgaProbes::stress_column_values(const iga::Problem& problem, const Probe& p,
                                        std::vector<double>& out, std::size_t at) const {
-  std::vector<double> trial;
-  const std::vector<iga::PointState> states =
-      problem.element_states(p.element, parts_from_law_ ? &trial : nullptr);
+  const std::vector<iga::PointState> states = problem.element_states(p.element);
   const iga::PointState st = p.point >= 0 ? states[static_cast<std::size_t>(p.point)]
                                           : problem.interpolate_state(p.element, states, p.xi);
   const Eigen::Vector3d& a = st.fibre_deformed;
   if (parts_from_law_) {
     const materials::MaterialLaw& law = problem.law();
-    const std::size_t hs = static_cast<std::size_t>(law.history_size());
     std::vector<Eigen::Matrix3d> parts(part_names_.size(), Eigen::Matrix3d::Zero());
     std::vector<Eigen::Matrix3d> point_parts(part_names_.size());
     materials::PointInput in;
@@ -186,7 +183,7 @@ double IgaProbes::stress_column_values(const iga::Problem& problem, const Probe&
       in.F = states[q].field.F;
       in.fibre = states[q].fibre;
       std::fill(point_parts.begin(), point_parts.end(), Eigen::Matrix3d::Zero());
-      law.cauchy_parts(in, std::span<const double>(trial.data() + q * hs, hs), point_parts);
+      law.cauchy_parts(in, problem.committed_history(p.element, static_cast<int>(q)), point_parts);
       for (std::size_t i = 0; i < parts.size(); ++i) {
         if (replace_volumetric_ && part_names_[i] == "vol")
           point_parts[i] = states[q].p_bar * Eigen::Matrix3d::Identity();

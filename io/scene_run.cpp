@@ -70,8 +70,8 @@ class ScopedSeconds {
 //   onset after inactive steps, where the first Newton step from u_n is then rejected by the line
 //   search (it raises |r| 100-fold on its way into the quadratic basin) and the step was cut four
 //   times (chapter-3 set-up 3, examples/barrel/chapter3/README.md).
-// * a hook that runs on the converged state just before it is committed (exact reactions and the
-//   pre-step histories for the probes).
+// * a hook that runs on the converged state just before it is committed (the exact reactions of
+//   the probes).
 class SteppedProblem final : public solver::NonlinearProblem {
  public:
   SteppedProblem(solver::NonlinearProblem& problem, double held_tolerance,

@@ -358,20 +358,22 @@ TEST_F(RunCli, SignalStopsTheRunAndKeepsTheConvergedSteps) {
 
 // adaptive = false: steps of dt, but a step that fails is cut back and the step then grows back
 // towards dt (never beyond it) instead of staying at the cut size for the rest of the run. The
-// clamp starts moving at 0.3 s; with 4 Newton iterations allowed the steps there are cut to
-// 0.021 s (4 cuts in all), and the run takes 23 steps.
+// clamp starts moving at 0.3 s; with 3 Newton iterations allowed the steps there are cut to
+// 0.00625 s (9 cuts in all), then grow back to 0.047 s. (With 4 allowed they were cut to 0.021 s
+// until the held steps before 0.3 s were predicted instead of extrapolated, 2026-12-03; since then
+// 4 iterations need only two cuts, too few to show the regrowth.)
 TEST_F(RunCli, FixedStepGrowsBackToDtAfterACut) {
   const fs::path scene =
       write("fixed_dt.toml",
             barrel_scene("[material]\nmodel = \"lu2010\"\n[material.parameters]\nn2 = 0.0\n",
                          "[[boundary]]\nface = \"v1\"\ntype = \"displacement\"\n"
                          "velocity = [0.0, 0.0, 0.05]\nstart = 0.3\n",
-                         "end = 1.0\ndt = 0.1\nadaptive = false\n", "newton_max_iterations = 4\n"));
+                         "end = 1.0\ndt = 0.1\nadaptive = false\n", "newton_max_iterations = 3\n"));
   const fs::path out = dir_ / "fixed_dt";
   const CliResult r = run("run " + scene.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
   const nlohmann::json s = summary(out);
-  ASSERT_GE(s["step_cuts"].size(), 2u);
+  ASSERT_GE(s["step_cuts"].size(), 1u);
   const Table probes = read_csv(out / "probes.csv");
   double smallest = 1.0, largest_after_cut = 0.0;
   for (const auto& row : probes.rows) {
@@ -381,8 +383,8 @@ TEST_F(RunCli, FixedStepGrowsBackToDtAfterACut) {
     if (row[probes.column("time")] > 0.5)
       largest_after_cut = std::max(largest_after_cut, dt);
   }
-  EXPECT_LE(smallest, 0.025 * (1.0 + 1e-12));  // cut at least twice: 0.1 -> 0.05 -> 0.025
-  // Grown back (to 0.056 s) instead of keeping the cut size for the rest of the run.
+  EXPECT_LT(smallest, 0.025);  // cut at least twice
+  // Grown back (to 0.047 s) instead of keeping the cut size for the rest of the run.
   EXPECT_GT(largest_after_cut, 0.04);
   EXPECT_GT(largest_after_cut, 2.5 * smallest);
   EXPECT_LT(s["steps"].get<int>(), 100);
