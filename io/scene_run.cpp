@@ -65,11 +65,12 @@ class ScopedSeconds {
 //   it moves the interior with the prescribed increment, so the first iterate does not squeeze the
 //   whole increment into the elements next to the moved face. A step is held when no entry of its
 //   increment exceeds the round-off correction tolerance (NewtonSettings::correction_tolerance):
-//   a held step's "velocity" is the round-off of its solve (1e-20 m after a step that starts in
-//   equilibrium), and extrapolating it instead of predicting skipped the predictor at an activation
-//   onset after inactive steps, where the first Newton step from u_n is then rejected by the line
-//   search (it raises |r| 100-fold on its way into the quadratic basin) and the step was cut four
-//   times (chapter-3 set-up 3, examples/barrel/chapter3/README.md).
+//   a held step's "velocity" is the round-off of its solve (not exactly zero even after a step
+//   that starts in equilibrium and needs no iteration), and extrapolating it instead of predicting
+//   skipped the predictor at an activation onset after inactive steps, where the first Newton step
+//   from u_n is then rejected by the line search (it raises |r| 100-fold on its way into the
+//   quadratic basin) and the step was cut four times (chapter-3 set-up 3,
+//   examples/barrel/chapter3/README.md).
 // * a hook that runs on the converged state just before it is committed (the exact reactions of
 //   the probes).
 class SteppedProblem final : public solver::NonlinearProblem {
