@@ -16,12 +16,15 @@ bool usable(const Eigen::Vector3d& v) {
   return v.allFinite() && v.norm() > 0.0;
 }
 
-// Distance from X to the closed segment [a, b].
-double segment_distance(const Eigen::Vector3d& X, const Eigen::Vector3d& a,
-                        const Eigen::Vector3d& b) {
-  const Eigen::Vector3d d = b - a;
-  const double t = std::clamp((X - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-  return (X - (a + t * d)).norm();
+// Unit direction of polyline segment [P_i, P_i+1].
+Eigen::Vector3d unit_direction(const std::vector<Eigen::Vector3d>& p, std::size_t i) {
+  return (p[i + 1] - p[i]).normalized();
+}
+
+// Normal of the miter plane at interior joint P_i: the mean of the unit directions of the two
+// segments that meet there, so the plane makes equal angles with both (the bisecting plane).
+Eigen::Vector3d miter_normal(const std::vector<Eigen::Vector3d>& p, std::size_t i) {
+  return unit_direction(p, i - 1) + unit_direction(p, i);
 }
 
 }  // namespace
@@ -46,6 +49,17 @@ FibreSpec FibreSpec::segments(std::vector<Eigen::Vector3d> points) {
   FibreSpec s;
   s.mode = Mode::polyline;
   s.polyline = std::move(points);
+  s.validate();
+  return s;
+}
+
+FibreSpec FibreSpec::segments_cut_at(std::vector<Eigen::Vector3d> points, int direction,
+                                     std::vector<double> cuts) {
+  FibreSpec s;
+  s.mode = Mode::polyline;
+  s.polyline = std::move(points);
+  s.cut_direction = direction;
+  s.cuts = std::move(cuts);
   s.validate();
   return s;
 }
@@ -84,6 +98,29 @@ void FibreSpec::validate() const {
                                       " has non-finite or coincident end points");
         }
       }
+      for (std::size_t i = 1; i + 1 < polyline.size(); ++i) {
+        if (!(miter_normal(polyline, i).norm() > 1e-12)) {
+          throw std::invalid_argument("fibre polyline turns back on itself at point " +
+                                      std::to_string(i) + ": the joint has no bisecting plane");
+        }
+      }
+      if (cut_direction >= 0) {
+        if (cut_direction > 2) {
+          throw std::invalid_argument("fibre polyline cut direction " +
+                                      std::to_string(cut_direction) +
+                                      " invalid (valid: 0 = u, 1 = v, 2 = w, -1 = miter planes)");
+        }
+        if (cuts.size() + 2 != polyline.size()) {
+          throw std::invalid_argument("fibre polyline of " + std::to_string(polyline.size() - 1) +
+                                      " segments needs " + std::to_string(polyline.size() - 2) +
+                                      " parametric cuts, got " + std::to_string(cuts.size()));
+        }
+        for (std::size_t i = 0; i < cuts.size(); ++i) {
+          if (!std::isfinite(cuts[i]) || (i > 0 && !(cuts[i] > cuts[i - 1]))) {
+            throw std::invalid_argument("fibre polyline cuts must be finite and increasing");
+          }
+        }
+      }
       break;
     case Mode::origin_insertion:
       if (!origin.allFinite() || !insertion.allFinite() || !((insertion - origin).norm() > 0.0)) {
@@ -111,6 +148,14 @@ const char* to_string(FibreSpec::Mode mode) {
 // Thesis 5.27–5.29: A = dH/dxi_d / |dH/dxi_d| (isocurve); the other modes as in the header.
 Eigen::Vector3d fibre_direction(const FibreSpec& spec, const Eigen::Matrix3d& jac,
                                 const Eigen::Vector3d& X) {
+  if (spec.mode == FibreSpec::Mode::polyline && spec.cut_direction >= 0) {
+    throw std::invalid_argument("fibre polyline with parametric cuts needs the point's xi");
+  }
+  return fibre_direction(spec, jac, X, Eigen::Vector3d::Zero());
+}
+
+Eigen::Vector3d fibre_direction(const FibreSpec& spec, const Eigen::Matrix3d& jac,
+                                const Eigen::Vector3d& X, const Eigen::Vector3d& xi) {
   switch (spec.mode) {
     case FibreSpec::Mode::isocurve:
       try {
@@ -125,16 +170,23 @@ Eigen::Vector3d fibre_direction(const FibreSpec& spec, const Eigen::Matrix3d& ja
     case FibreSpec::Mode::constant:
       return spec.vector.normalized();
     case FibreSpec::Mode::polyline: {
-      std::size_t best = 0;
-      double best_d = std::numeric_limits<double>::infinity();
-      for (std::size_t i = 0; i + 1 < spec.polyline.size(); ++i) {
-        const double d = segment_distance(X, spec.polyline[i], spec.polyline[i + 1]);
-        if (d < best_d) {
-          best_d = d;
-          best = i;
+      // Walk the joints in order: X is past joint i when it lies on the far side of the miter
+      // plane there (through P_i, normal to the mean of the unit directions of the segments that
+      // meet at P_i). Nearest-segment distance would tie exactly on the convex side of a joint,
+      // where both distances are |X - P_i|, and leave that region to round-off.
+      std::size_t segment = 0;
+      if (spec.cut_direction >= 0) {
+        const auto above =
+            std::upper_bound(spec.cuts.begin(), spec.cuts.end(), xi[spec.cut_direction]);
+        segment = static_cast<std::size_t>(above - spec.cuts.begin());
+      } else {
+        for (std::size_t i = 1; i + 1 < spec.polyline.size(); ++i) {
+          if ((X - spec.polyline[i]).dot(miter_normal(spec.polyline, i)) <= 0.0)
+            break;
+          segment = i;
         }
       }
-      return (spec.polyline[best + 1] - spec.polyline[best]).normalized();
+      return unit_direction(spec.polyline, segment);
     }
     case FibreSpec::Mode::origin_insertion:
       return (spec.insertion - spec.origin).normalized();
@@ -149,7 +201,7 @@ std::vector<Eigen::Vector3d> fibre_directions(const Space& space, const FibreSpe
   for (int e = 0; e < space.num_elements(); ++e) {
     for (int q = 0; q < nqp; ++q) {
       out[static_cast<std::size_t>(e) * nqp + q] =
-          fibre_direction(spec, space.jacobian(e, q), space.position(e, q));
+          fibre_direction(spec, space.jacobian(e, q), space.position(e, q), space.parametric(e, q));
     }
   }
   return out;

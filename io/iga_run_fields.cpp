@@ -81,7 +81,7 @@ void IgaFieldOutput::write(const iga::Problem& problem) {
             sigma.values(c, 3 * r + s) = st.cauchy(r, s);
       }
       if (want_fibre) {
-        const Eigen::Vector3d N = iga::fibre_direction(fibre_spec_, p.jacobian, p.X);
+        const Eigen::Vector3d N = iga::fibre_direction(fibre_spec_, p.jacobian, p.X, xi);
         const Eigen::Vector3d FN = p.F * N;
         fibre.values.row(c) = (FN / FN.norm()).transpose();
       }

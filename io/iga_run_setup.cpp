@@ -114,6 +114,31 @@ std::vector<int> selected_nodes(const IgaModel& model, const FaceSelector& where
   return iga::nodes_of(*model.dofs, cps);
 }
 
+// "Method 1" segments (fibre_directions.hpp) are pieces of different fibre direction meeting at
+// isoparametric surfaces: the active stress jumps there and the strain has a kink, which a basis
+// that is C^1 or smoother across the cut cannot follow (the error then decays slowly and not
+// monotonically). Each cut becomes a knot of multiplicity p, so the pieces meet at C^0 element
+// faces, as the parts of a mesh do. A knot already within 1e-12 of the domain's length of the
+// cut is raised in place (a uniform refinement computes its knots, so the middle one need not be
+// exactly the cut), so no span of round-off length is made.
+geometry::NurbsVolume with_c0_segment_cuts(geometry::NurbsVolume volume,
+                                           const iga::FibreSpec& spec) {
+  if (spec.mode != iga::FibreSpec::Mode::polyline || spec.cut_direction < 0)
+    return volume;
+  const int d = spec.cut_direction;
+  const auto [lo, hi] = volume.domain(d);
+  for (double cut : spec.cuts) {
+    for (double knot : volume.knots(d).breakpoints()) {
+      if (std::abs(knot - cut) <= 1e-12 * (hi - lo))
+        cut = knot;
+    }
+    const int missing = volume.degree(d) - volume.knots(d).multiplicity(cut);
+    if (missing > 0)
+      volume = geometry::insert_knot(volume, d, cut, missing);
+  }
+  return volume;
+}
+
 // Geometry -> solid -> refinement -> space, DOFs, fibres, law, conditions -> problem (the data flow
 // of DESIGN.md; thesis 5.13-5.15 for the solid, 5.27-5.30 for the fibres).
 IgaModel build_iga_model(const Scene& scene, int threads) {
@@ -154,12 +179,13 @@ IgaModel build_iga_model(const Scene& scene, int threads) {
     std::sort(solid_knots.begin(), solid_knots.end());  // a reversed direction reverses them
     volume = geometry::refine_knots(volume, s, solid_knots);
   }
-  model.space = std::make_unique<iga::Space>(std::move(volume));
+  model.fibre_spec = fibre_spec(scene.fibres, frame, volume);
+  model.space =
+      std::make_unique<iga::Space>(with_c0_segment_cuts(std::move(volume), model.fibre_spec));
   model.dofs = std::make_unique<iga::DofMap>(model.space->volume());
 
   // Material, fibres, boundary conditions.
   model.law = make_law(scene.material, scene.solver.tangent);
-  model.fibre_spec = fibre_spec(scene.fibres, frame, model.space->volume());
   std::vector<Eigen::Vector3d> fibres = iga::fibre_directions(*model.space, model.fibre_spec);
   for (std::size_t i = 0; i < scene.boundaries.size(); ++i) {
     add_boundary(model, scene.boundaries[i], static_cast<int>(i));

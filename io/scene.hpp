@@ -78,7 +78,7 @@ struct MaterialSettings {
 enum class FibreMode {
   isocurve,  // tangent of the parametric isocurve in `direction` (thesis 5.29)
   constant,  // one direction `vector` everywhere (e.g. z)
-  segments,  // body cut into `segments` pieces along `direction`, one chord direction each
+  segments,  // body cut at equal steps of `direction` into `segments` pieces, one chord each
   line,      // the straight line from `origin` to `insertion` (LS-DYNA P25-P30)
 };
 const char* to_string(FibreMode m);

@@ -98,11 +98,17 @@ iga::FibreSpec fibre_spec(const FibreSettings& f, const SceneFrame& frame,
     case FibreMode::segments: {
       const int d = frame.solid(f.direction);
       const auto [lo, hi] = volume.domain(d);
+      // Piece i is lo + (hi - lo) [i, i + 1] / n along d, its fibre the chord between the
+      // centroids of its end sections.
       std::vector<Eigen::Vector3d> points;
+      std::vector<double> cuts;
       for (int i = 0; i <= f.segments; ++i) {
-        points.push_back(isoparametric_centroid(volume, d, lo + (hi - lo) * i / f.segments));
+        const double t = lo + (hi - lo) * i / f.segments;
+        points.push_back(isoparametric_centroid(volume, d, t));
+        if (i > 0 && i < f.segments)
+          cuts.push_back(t);
       }
-      return iga::FibreSpec::segments(std::move(points));
+      return iga::FibreSpec::segments_cut_at(std::move(points), d, std::move(cuts));
     }
     case FibreMode::line:
       return iga::FibreSpec::origin_to_insertion(f.origin, f.insertion);

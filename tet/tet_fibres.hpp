@@ -29,6 +29,17 @@ std::vector<Eigen::Vector3d> constant_fibres(const TetSpace& space,
 Eigen::Vector3d nurbs_fibre_at(const geometry::PointInverter& inverter, const Eigen::Vector3d& X,
                                int direction, double max_outside_distance);
 
+// xi = H^-1(X) of one physical point, with nurbs_fibre_at's rule for points outside the solid.
+Eigen::Vector3d parameters_at(const geometry::PointInverter& inverter, const Eigen::Vector3d& X,
+                              double max_outside_distance);
+
+// parameters_at at every quadrature point, element-major (for fibre fields that cut the body at
+// isoparametric surfaces); max_outside_distance < 0 as for nurbs_fibres.
+std::vector<Eigen::Vector3d> quadrature_parameters(const TetSpace& space,
+                                                   const geometry::NurbsVolume& volume,
+                                                   double max_outside_distance = -1.0,
+                                                   const geometry::InversionOptions& options = {});
+
 // nurbs_fibre_at at every quadrature point, element-major. max_outside_distance < 0 means 2 % of
 // the solid's size (PointInverter::size()).
 std::vector<Eigen::Vector3d> nurbs_fibres(const TetSpace& space,

@@ -183,6 +183,44 @@ TEST(FibreDirections, ModesAndErrors) {
              Eigen::Vector3d(0, -0.2, 1).normalized())
                 .norm(),
             1e-14);
+  // On the convex side of the joint (y > 0.2, beyond the ends of both segments) the distance to
+  // either segment is the distance to the joint itself; the bisecting plane z = 1 still decides.
+  for (const double y : {0.25, 0.5, 3.0}) {
+    EXPECT_LT((fibre_direction(two, I, Eigen::Vector3d(0.1, y, 0.999)) -
+               Eigen::Vector3d(0, 0.2, 1).normalized())
+                  .norm(),
+              1e-14)
+        << "y = " << y;
+    EXPECT_LT((fibre_direction(two, I, Eigen::Vector3d(0.1, y, 1.001)) -
+               Eigen::Vector3d(0, -0.2, 1).normalized())
+                  .norm(),
+              1e-14)
+        << "y = " << y;
+  }
+  // Three segments: the second joint's plane is crossed only after the first's.
+  const FibreSpec three = FibreSpec::segments({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
+                                               Eigen::Vector3d(1, 1, 0), Eigen::Vector3d(0, 1, 0)});
+  EXPECT_LT((fibre_direction(three, I, {0.5, -0.2, 0}) - Eigen::Vector3d::UnitX()).norm(), 1e-15);
+  EXPECT_LT((fibre_direction(three, I, {1.2, 0.5, 0}) - Eigen::Vector3d::UnitY()).norm(), 1e-15);
+  EXPECT_LT((fibre_direction(three, I, {0.5, 1.2, 0}) + Eigen::Vector3d::UnitX()).norm(), 1e-15);
+  EXPECT_THROW(FibreSpec::segments({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 1),
+                                    Eigen::Vector3d(0, 0, 0.5)}),
+               std::invalid_argument);
+  // Cut at the isoparametric surface w = 0.5 instead: the parameter decides, not the position.
+  const FibreSpec cut = FibreSpec::segments_cut_at(
+      {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0.2, 1), Eigen::Vector3d(0, 0, 2)}, 2, {0.5});
+  EXPECT_LT((fibre_direction(cut, I, {0, 0, 1.7}, {0.3, 0.3, 0.49}) -
+             Eigen::Vector3d(0, 0.2, 1).normalized())
+                .norm(),
+            1e-14);
+  EXPECT_LT((fibre_direction(cut, I, {0, 0, 0.3}, {0.3, 0.3, 0.51}) -
+             Eigen::Vector3d(0, -0.2, 1).normalized())
+                .norm(),
+            1e-14);
+  EXPECT_THROW(fibre_direction(cut, I, {0, 0, 0.3}), std::invalid_argument);  // xi needed
+  EXPECT_THROW(FibreSpec::segments_cut_at(cut.polyline, 2, {}), std::invalid_argument);
+  EXPECT_THROW(FibreSpec::segments_cut_at(cut.polyline, 3, {0.5}), std::invalid_argument);
+  EXPECT_THROW(FibreSpec::segments_cut_at(three.polyline, 1, {0.6, 0.4}), std::invalid_argument);
   EXPECT_LT((fibre_direction(FibreSpec::origin_to_insertion({1, 1, 1}, {1, 1, 3}), I, {0, 0, 0}) -
              Eigen::Vector3d::UnitZ())
                 .norm(),
