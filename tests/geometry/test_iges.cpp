@@ -403,12 +403,20 @@ TEST_F(Iges, DamagedParameterDataNamesTheEntity) {
   write_iges(file("full.igs"), {cone_frustum(0.02, 0.004, 0.05)});
   std::ifstream in(file("full.igs"), std::ios::binary);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::size_t p = text.find("128,");
-  ASSERT_NE(p, std::string::npos);
+  // The first parameter-data record (column 73 'P'), not the first "128," of the file: the
+  // global section before it holds the writing time, which contains "128," at hh:m1:28.
+  std::size_t p = 0;
+  while (p < text.size() && !(text.size() > p + 72 && text[p + 72] == 'P')) {
+    const std::size_t end_of_line = text.find('\n', p);
+    p = end_of_line == std::string::npos ? text.size() : end_of_line + 1;
+  }
+  ASSERT_LT(p, text.size());
+  ASSERT_EQ(text.compare(p, 4, "128,"), 0) << text.substr(p, 80);
   text.replace(p, 6, "128,Q,");  // K1 is no longer an integer
   std::ofstream(file("bad.igs"), std::ios::binary) << text;
   const std::string message = error_of(file("bad.igs"));
-  EXPECT_NE(message.find("directory entry 1"), std::string::npos) << message;
+  EXPECT_NE(message.find("directory entry 1"), std::string::npos)
+      << message << "\ndamaged record: " << text.substr(p, 80);
 }
 
 // A seed of fuzz/iges_reader_fuzzer: one trimmed B-spline face of hammer.iges (occt-misc) as
