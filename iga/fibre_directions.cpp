@@ -170,16 +170,16 @@ Eigen::Vector3d fibre_direction(const FibreSpec& spec, const Eigen::Matrix3d& ja
     case FibreSpec::Mode::constant:
       return spec.vector.normalized();
     case FibreSpec::Mode::polyline: {
-      // Walk the joints in order: X is past joint i when it lies on the far side of the miter
-      // plane there (through P_i, normal to the mean of the unit directions of the segments that
-      // meet at P_i). Nearest-segment distance would tie exactly on the convex side of a joint,
-      // where both distances are |X - P_i|, and leave that region to round-off.
       std::size_t segment = 0;
       if (spec.cut_direction >= 0) {
+        // Parametric cuts: the number of cuts at or below xi_d.
         const auto above =
             std::upper_bound(spec.cuts.begin(), spec.cuts.end(), xi[spec.cut_direction]);
         segment = static_cast<std::size_t>(above - spec.cuts.begin());
       } else {
+        // Walk the joints in order: X is past joint i when it lies on the far side of the miter
+        // plane there. Nearest-segment distance would tie exactly on the convex side of a joint,
+        // where both distances are |X - P_i|, and leave that region to round-off.
         for (std::size_t i = 1; i + 1 < spec.polyline.size(); ++i) {
           if ((X - spec.polyline[i]).dot(miter_normal(spec.polyline, i)) <= 0.0)
             break;

@@ -30,20 +30,21 @@ std::vector<Eigen::Vector3d> fibres_of(const TetModel& model) {
       return tet::constant_fibres(*model.space, spec.vector);
     case iga::FibreSpec::Mode::polyline:
     case iga::FibreSpec::Mode::origin_insertion: {
-      // Segments cut at isoparametric surfaces need each point's xi in the solid.
-      const bool parametric =
-          spec.mode == iga::FibreSpec::Mode::polyline && spec.cut_direction >= 0;
+      // Segments cut at isoparametric surfaces need each point's xi in the solid (inverted only
+      // for them); the other position-only modes take the position alone.
       const std::vector<Eigen::Vector3d> xi =
-          parametric
+          spec.mode == iga::FibreSpec::Mode::polyline && spec.cut_direction >= 0
               ? tet::quadrature_parameters(*model.space, model.solid.volume)
-              : std::vector<Eigen::Vector3d>(static_cast<std::size_t>(model.space->num_points()),
-                                             Eigen::Vector3d::Zero());
+              : std::vector<Eigen::Vector3d>{};
       std::vector<Eigen::Vector3d> out;
-      out.reserve(xi.size());
+      out.reserve(static_cast<std::size_t>(model.space->num_points()));
       for (int e = 0; e < model.space->num_elements(); ++e)
-        for (int q = 0; q < model.space->points_per_element(); ++q)
-          out.push_back(iga::fibre_direction(spec, Eigen::Matrix3d::Identity(),
-                                             model.space->position(e, q), xi[out.size()]));
+        for (int q = 0; q < model.space->points_per_element(); ++q) {
+          const Eigen::Vector3d& X = model.space->position(e, q);
+          out.push_back(xi.empty() ? iga::fibre_direction(spec, Eigen::Matrix3d::Identity(), X)
+                                   : iga::fibre_direction(spec, Eigen::Matrix3d::Identity(), X,
+                                                          xi[out.size()]));
+        }
       return out;
     }
   }
