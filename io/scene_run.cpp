@@ -261,7 +261,8 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         options.out_dir / "newton.csv",
         std::vector<std::string>{"step", "time", "dt", "iteration", "initial_residual_norm",
                                  "residual_norm", "relative_residual", "energy", "relative_energy",
-                                 "step_length", "line_search_halvings", "rcond", "lu_fallback"});
+                                 "step_length", "line_search_halvings", "rcond", "lu_fallback",
+                                 "converged"});
   } catch (const std::exception& e) {
     result.setup_failed = true;
     return finish(std::string("set-up failed: ") + e.what());
@@ -303,6 +304,23 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
                                      ScopedSeconds timer(wall.output);
                                      model->before_commit(converged);
                                    });
+    // One row per Newton iteration, of converged steps and of failed attempts (converged 0: the
+    // step that was cut, numbered as the step it tried to be, at the time it tried to reach), so
+    // that a stall before a cut can be read off the file.
+    const auto write_newton_rows = [&](int step, double time, double dt,
+                                       const solver::NewtonResult& n, bool converged) {
+      for (const solver::NewtonIteration& it : n.history) {
+        newton_csv->write_row(
+            {static_cast<double>(step), time, dt, static_cast<double>(it.iteration),
+             n.initial_residual_norm, it.residual_norm, it.relative_residual, it.energy,
+             it.relative_energy, it.step_length, static_cast<double>(it.line_search_halvings),
+             it.rcond, it.lu_fallback ? 1.0 : 0.0, converged ? 1.0 : 0.0});
+      }
+    };
+    const auto on_cut = [&](const solver::StepCut& cut, const solver::NewtonResult& n) {
+      ScopedSeconds timer(wall.output);
+      write_newton_rows(steps + 1, cut.time + cut.dt, cut.dt, n, false);
+    };
     const auto on_step = [&](const solver::StepInfo& info, const Eigen::VectorXd&) {
       ScopedSeconds timer(wall.output);
       ++steps;
@@ -317,13 +335,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         min_jacobian = J;
         min_jacobian_time = r.time;
       }
-      for (const solver::NewtonIteration& it : n.history) {
-        newton_csv->write_row(
-            {static_cast<double>(r.step), r.time, r.dt, static_cast<double>(it.iteration),
-             n.initial_residual_norm, it.residual_norm, it.relative_residual, it.energy,
-             it.relative_energy, it.step_length, static_cast<double>(it.line_search_halvings),
-             it.rcond, it.lu_fallback ? 1.0 : 0.0});
-      }
+      write_newton_rows(r.step, r.time, r.dt, n, true);
       model->probe_values(probe_row);
       std::vector<double> row{r.time, static_cast<double>(r.step), r.dt,
                               static_cast<double>(r.newton_iterations)};
@@ -344,7 +356,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         throw std::runtime_error(
             "interrupted (SIGINT or SIGTERM); the results up to this step are written");
     };
-    stepped = stepper->run(stepped_problem, u, on_step);
+    stepped = stepper->run(stepped_problem, u, on_step, on_cut);
     if (!stepped.completed)
       failure = stepped.message;
   } catch (const std::exception& e) {

@@ -9,8 +9,9 @@
 //   stepping solver::TimeStepper over [0, time.end] with Newton (scene [solver]), steps landing on
 //            every output time, cut back on failure down to time.dt_min
 //   outputs  after every converged step: a row of probes.csv (iga_run_probes.hpp) and the step's
-//            Newton iterations in newton.csv; at each output time the fields (iga_run_fields.hpp)
-//            in fields.h5 + fields.xdmf; at the end summary.json (run_summary.hpp)
+//            Newton iterations in newton.csv (and those of each failed attempt); at each output
+//            time the fields (iga_run_fields.hpp) in fields.h5 + fields.xdmf; at the end
+//            summary.json (run_summary.hpp)
 //
 // The folder then holds:
 //   summary.json   status "converged" | "failed" (+ reason), sizes, Newton statistics, step cuts,
@@ -20,8 +21,9 @@
 //                  output time and at the last converged one (solution_file.hpp): what
 //                  `isomuscle compare` evaluates
 //   probes.csv     time, step, dt, newton_iterations, then one column per probe value
-//   newton.csv     step, time, dt, iteration, initial_residual_norm, residual_norm, ... per Newton
-//                  iteration of every converged step (quadratic convergence can be read off it)
+//   newton.csv     step, time, dt, iteration, initial_residual_norm, residual_norm, ...,
+//                  converged per Newton iteration of every converged step (quadratic convergence
+//                  can be read off it) and of every failed attempt (converged 0, before its cut)
 //   scene.toml     a copy of the scene
 //
 // Every file is written as the run goes (HDF5/XDMF and CSV incrementally), so a run that fails

@@ -84,7 +84,7 @@ TimeStepper::TimeStepper(TimeStepperSettings settings, NewtonSettings newton)
 
 // Adaptive quasi-static stepping (see header); times in s.
 TimeStepperResult TimeStepper::run(NonlinearProblem& problem, Eigen::VectorXd& u,
-                                   const StepCallback& on_step) {
+                                   const StepCallback& on_step, const CutCallback& on_cut) {
   if (u.size() != problem.size()) {
     throw std::invalid_argument("TimeStepper::run: the initial state has size " +
                                 std::to_string(u.size()) + " but the problem has " +
@@ -177,6 +177,9 @@ TimeStepperResult TimeStepper::run(NonlinearProblem& problem, Eigen::VectorXd& u
     cut.reason = newton.message;
     cut.newton_iterations = newton.iterations;
     result.cuts.push_back(cut);
+    if (on_cut) {
+      on_cut(result.cuts.back(), newton);
+    }
     if (cut.next_dt < s.min_dt) {
       result.message = "the step from t = " + sci(t) + " failed with dt = " + sci(dt) + " (" +
                        to_string(newton.stop) + ": " + newton.message +

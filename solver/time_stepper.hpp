@@ -84,6 +84,9 @@ struct TimeStepperResult {
 class TimeStepper {
  public:
   using StepCallback = std::function<void(const StepInfo& info, const Eigen::VectorXd& u)>;
+  // Called after each failed attempt, once its cut is recorded (u is back at the last converged
+  // state): the Newton iterations of the attempt, which no converged step shows.
+  using CutCallback = std::function<void(const StepCut& cut, const NewtonResult& newton)>;
 
   // Validates both settings (SettingError).
   explicit TimeStepper(TimeStepperSettings settings, NewtonSettings newton = {});
@@ -91,9 +94,9 @@ class TimeStepper {
   // Runs from the state u at start_time (the problem's committed state). On return u is the last
   // converged state (at result.time), whether or not the run completed. on_step may be empty.
   // Throws std::invalid_argument when u has the wrong size; exceptions from the problem or the
-  // callback propagate.
+  // callbacks propagate. on_cut may be empty.
   TimeStepperResult run(NonlinearProblem& problem, Eigen::VectorXd& u,
-                        const StepCallback& on_step = {});
+                        const StepCallback& on_step = {}, const CutCallback& on_cut = {});
 
   const TimeStepperSettings& settings() const { return settings_; }
   const NewtonSolver& newton() const { return newton_; }

@@ -388,6 +388,27 @@ TEST_F(RunCli, FixedStepGrowsBackToDtAfterACut) {
   EXPECT_GT(largest_after_cut, 0.04);
   EXPECT_GT(largest_after_cut, 2.5 * smallest);
   EXPECT_LT(s["steps"].get<int>(), 100);
+
+  // newton.csv holds the iterations of the failed attempts too (converged 0): every iteration of
+  // the run is a row, and each cut's attempt is there with the time it tried to reach, all 3 of
+  // its iterations before the cut.
+  const Table newton = read_csv(out / "newton.csv");
+  EXPECT_EQ(newton.rows.size(), s["newton_iterations"].get<std::size_t>());
+  std::size_t failed_rows = 0;
+  for (const auto& row : newton.rows)
+    failed_rows += row[newton.column("converged")] == 0.0 ? 1 : 0;
+  EXPECT_EQ(failed_rows, 3 * s["step_cuts"].size());
+  for (const auto& cut : s["step_cuts"]) {
+    const double dt = cut["dt_failed"].get<double>();
+    const double reached = cut["time"].get<double>() + dt;
+    int iterations = 0;
+    for (const auto& row : newton.rows)
+      if (row[newton.column("converged")] == 0.0 && row[newton.column("dt")] == dt &&
+          std::abs(row[newton.column("time")] - reached) <= 1e-12)
+        iterations = std::max(iterations, static_cast<int>(row[newton.column("iteration")]));
+    EXPECT_EQ(iterations, 3) << "cut at t = " << cut["time"] << ", dt = " << dt;
+  }
+  EXPECT_EQ(newton.rows.back()[newton.column("converged")], 1.0);  // the last step converged
 }
 
 // The displacement formulation with a nearly incompressible law (lu2010: kappa/mu ~ 1e4) is

@@ -79,7 +79,25 @@ TEST(TimeStepper, EvaluationFailureCutsTheStepAndEndsWithTheLastGoodState) {
   TimeStepperSettings settings = stepping(0.1, 0.2);
   TimeStepper stepper(settings);
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
-  const TimeStepperResult result = stepper.run(problem, u);
+  // The cut callback sees every failed attempt as it is recorded, with its Newton iterations.
+  std::vector<StepCut> seen;
+  int iterations_seen = 0;
+  const TimeStepperResult result =
+      stepper.run(problem, u, {}, [&](const StepCut& cut, const NewtonResult& newton) {
+        seen.push_back(cut);
+        EXPECT_EQ(static_cast<int>(newton.history.size()), cut.newton_iterations);
+        EXPECT_FALSE(newton.converged);
+        iterations_seen += newton.iterations;
+      });
+  ASSERT_EQ(seen.size(), result.cuts.size());
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    EXPECT_EQ(seen[i].attempt, result.cuts[i].attempt);
+    EXPECT_EQ(seen[i].dt, result.cuts[i].dt);
+  }
+  int converged_iterations = 0;
+  for (const StepRecord& step : result.steps)
+    converged_iterations += step.newton_iterations;
+  EXPECT_EQ(iterations_seen + converged_iterations, result.newton_iterations);
   std::cout << result.message << "\n";
   for (const StepCut& cut : result.cuts) {
     std::cout << "  cut at t=" << cut.time << " dt=" << cut.dt << ": " << to_string(cut.stop)
