@@ -114,6 +114,27 @@ std::vector<int> selected_nodes(const IgaModel& model, const FaceSelector& where
   return iga::nodes_of(*model.dofs, cps);
 }
 
+// The scene's explicit knots say where the mesh has element faces: a value that is already a knot
+// of the refined solid (within 1e-12 of the domain's length, as a uniform refinement computes its
+// knots) is left out, not inserted once more, which would lower the continuity there instead of
+// refining. So a graded mesh can be written as the list of all its knots, the solid's own among
+// them (the DAO's centreline has knots at 1/3 and 2/3), and a refinement study can halve every
+// span of that list.
+std::vector<double> knots_not_yet_there(const geometry::NurbsVolume& volume, int d,
+                                        const std::vector<double>& knots) {
+  const auto [lo, hi] = volume.domain(d);
+  const std::vector<double> existing = volume.knots(d).breakpoints();
+  std::vector<double> fresh;
+  for (double t : knots) {
+    const bool there = std::any_of(existing.begin(), existing.end(), [&](double knot) {
+      return std::abs(knot - t) <= 1e-12 * (hi - lo);
+    });
+    if (!there)
+      fresh.push_back(t);
+  }
+  return fresh;
+}
+
 // "Method 1" segments (fibre_directions.hpp) are pieces of different fibre direction meeting at
 // isoparametric surfaces: the active stress jumps there and the strain has a kink, which a basis
 // that is C^1 or smoother across the cut cannot follow (the error then decays slowly and not
@@ -177,7 +198,9 @@ IgaModel build_iga_model(const Scene& scene, int threads) {
       solid_knots.push_back(frame.solid_xi(xi)[s]);
     }
     std::sort(solid_knots.begin(), solid_knots.end());  // a reversed direction reverses them
-    volume = geometry::refine_knots(volume, s, solid_knots);
+    const std::vector<double> fresh = knots_not_yet_there(volume, s, solid_knots);
+    if (!fresh.empty())
+      volume = geometry::refine_knots(volume, s, fresh);
   }
   model.fibre_spec = fibre_spec(scene.fibres, frame, volume);
   model.space =

@@ -35,7 +35,9 @@ struct RefinementSettings {
   std::array<int, 3> knot_insertion{0, 0, 0};    // new knots per existing knot span in u, v, w
   // Knots inserted once each after the uniform insertion, as scene parameters in (0, 1) per
   // direction u, v, w: refinement concentrated where the user wants it (e.g. next to the
-  // collapsed centreline, w -> 1 on a shrink solid). Strictly increasing.
+  // collapsed centreline, w -> 1 on a shrink solid). Strictly increasing. A value that is
+  // already a knot of the refined solid is not inserted again (iga_run_setup.cpp), so a graded
+  // mesh can be listed whole.
   std::array<std::vector<double>, 3> knots{};
   void validate() const;
 };
