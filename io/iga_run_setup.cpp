@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "geometry/refinement.hpp"
@@ -114,22 +115,27 @@ std::vector<int> selected_nodes(const IgaModel& model, const FaceSelector& where
   return iga::nodes_of(*model.dofs, cps);
 }
 
+// The knot of `volume` in direction d within round-off (1e-12 of the domain's length) of t, if
+// any: a uniform refinement computes its knots, so a knot meant to be at t need not be exactly t.
+std::optional<double> knot_near(const geometry::NurbsVolume& volume, int d, double t) {
+  const auto [lo, hi] = volume.domain(d);
+  for (double knot : volume.knots(d).breakpoints()) {
+    if (std::abs(knot - t) <= 1e-12 * (hi - lo))
+      return knot;
+  }
+  return std::nullopt;
+}
+
 // The scene's explicit knots say where the mesh has element faces: a value that is already a knot
-// of the refined solid (within 1e-12 of the domain's length, as a uniform refinement computes its
-// knots) is left out, not inserted once more, which would lower the continuity there instead of
-// refining. So a graded mesh can be written as the list of all its knots, the solid's own among
-// them (the DAO's centreline has knots at 1/3 and 2/3), and a refinement study can halve every
-// span of that list.
+// of the refined solid (knot_near) is left out, not inserted once more, which would lower the
+// continuity there instead of refining. So a graded mesh can be written as the list of all its
+// knots, the solid's own among them (the DAO's centreline has knots at 1/3 and 2/3), and a
+// refinement study can halve every span of that list.
 std::vector<double> knots_not_yet_there(const geometry::NurbsVolume& volume, int d,
                                         const std::vector<double>& knots) {
-  const auto [lo, hi] = volume.domain(d);
-  const std::vector<double> existing = volume.knots(d).breakpoints();
   std::vector<double> fresh;
   for (double t : knots) {
-    const bool there = std::any_of(existing.begin(), existing.end(), [&](double knot) {
-      return std::abs(knot - t) <= 1e-12 * (hi - lo);
-    });
-    if (!there)
+    if (!knot_near(volume, d, t))
       fresh.push_back(t);
   }
   return fresh;
@@ -139,20 +145,15 @@ std::vector<double> knots_not_yet_there(const geometry::NurbsVolume& volume, int
 // isoparametric surfaces: the active stress jumps there and the strain has a kink, which a basis
 // that is C^1 or smoother across the cut cannot follow (the error then decays slowly and not
 // monotonically). Each cut becomes a knot of multiplicity p, so the pieces meet at C^0 element
-// faces, as the parts of a mesh do. A knot already within 1e-12 of the domain's length of the
-// cut is raised in place (a uniform refinement computes its knots, so the middle one need not be
-// exactly the cut), so no span of round-off length is made.
+// faces, as the parts of a mesh do. A knot already at the cut to round-off (knot_near) is raised
+// in place, so no span of round-off length is made.
 geometry::NurbsVolume with_c0_segment_cuts(geometry::NurbsVolume volume,
                                            const iga::FibreSpec& spec) {
   if (spec.mode != iga::FibreSpec::Mode::polyline || spec.cut_direction < 0)
     return volume;
   const int d = spec.cut_direction;
-  const auto [lo, hi] = volume.domain(d);
   for (double cut : spec.cuts) {
-    for (double knot : volume.knots(d).breakpoints()) {
-      if (std::abs(knot - cut) <= 1e-12 * (hi - lo))
-        cut = knot;
-    }
+    cut = knot_near(volume, d, cut).value_or(cut);
     const int missing = volume.degree(d) - volume.knots(d).multiplicity(cut);
     if (missing > 0)
       volume = geometry::insert_knot(volume, d, cut, missing);
