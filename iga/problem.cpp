@@ -146,7 +146,7 @@ solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool w
   const bool mixed = formulation_ == Formulation::mixed;
   const continuum::MixedBases::Pass pass = bases_.begin_pass(use_base, want_tangent);
   const std::size_t hs = static_cast<std::size_t>(history_size_);
-  thread_min_J_.assign(workspaces_.size(), continuum::JacobianMinimum{});
+  thread_J_range_.assign(workspaces_.size(), continuum::JacobianRange{});
   auto body = [&](int e, int thread) -> solver::EvaluationStatus {
     ElementWorkspace& ws = workspaces_[thread];
     const auto cps = space_.control_points(e);
@@ -165,7 +165,7 @@ solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool w
     if (!ks.ok()) {
       return solver::EvaluationStatus::failure(describe_failure(e, ks));
     }
-    thread_min_J_[thread].take_element(e, std::span<const double>(ws.J.data(), nqp));
+    thread_J_range_[thread].take_element(e, std::span<const double>(ws.J.data(), nqp));
     if (mixed)
       bases_.store(pass, e, ws);
     const auto& all = element_all_dofs_[e];
@@ -217,7 +217,7 @@ solver::EvaluationStatus Problem::evaluate(const Eigen::VectorXd& u, Eigen::Vect
   if (!status.ok) {
     return status;
   }
-  evaluated_min_J_ = continuum::JacobianMinimum::of(thread_min_J_);
+  evaluated_J_range_ = continuum::JacobianRange::of(thread_J_range_);
   Eigen::VectorXd diff = f_int_ - f_ext_;
   constraints_.restrict_to_free(diff, residual);
   if (!residual.allFinite()) {
@@ -243,7 +243,7 @@ void Problem::commit_step(const Eigen::VectorXd& u) {
   }
   history_previous_.swap(history_committed_);
   history_committed_ = history_trial_;
-  committed_min_J_ = evaluated_min_J_;
+  committed_J_range_ = evaluated_J_range_;
   if (formulation_ == Formulation::mixed)
     bases_.commit();
   constraints_.expand(u, time_, committed_full_);

@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "continuum/formulation.hpp"
-#include "continuum/jacobian_minimum.hpp"
+#include "continuum/jacobian_range.hpp"
 #include "continuum/mixed_bases.hpp"
 #include "continuum/point_state.hpp"
 #include "iga/boundary_conditions.hpp"
@@ -122,9 +122,9 @@ class Problem : public solver::NonlinearProblem {
   double committed_time() const { return committed_time_; }
   // The step size of the committed step (what the kernel passes of the outputs use).
   double committed_dt() const { return committed_dt_; }
-  // Smallest J = det F over the quadrature points of the committed state (its element and local
-  // point; found() is false before the first commit).
-  const continuum::JacobianMinimum& committed_min_jacobian() const { return committed_min_J_; }
+  // Smallest and largest J = det F over the quadrature points of the committed state (with their
+  // elements and local points; found() is false before the first commit).
+  const continuum::JacobianRange& committed_jacobian_range() const { return committed_J_range_; }
   std::span<const double> committed_history(int element, int point) const;
   const std::vector<Eigen::Vector3d>& fibres() const { return fibres_; }
   // External force at the current time (all DOFs), N.
@@ -184,8 +184,8 @@ class Problem : public solver::NonlinearProblem {
   solver::ElementColouring colouring_;
   std::vector<ElementWorkspace> workspaces_;
   // Per thread during an assembly pass; of the last successful evaluate(); of the committed state.
-  std::vector<continuum::JacobianMinimum> thread_min_J_;
-  continuum::JacobianMinimum evaluated_min_J_, committed_min_J_;
+  std::vector<continuum::JacobianRange> thread_J_range_;
+  continuum::JacobianRange evaluated_J_range_, committed_J_range_;
   int history_size_ = 0;
   std::vector<double> history_committed_;
   std::vector<double> history_trial_;

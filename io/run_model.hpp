@@ -14,20 +14,28 @@
 
 namespace isomuscle::io {
 
-// The smallest J = det F of a state and the reference position (m) of its quadrature point.
+// A J = det F of a state and the reference position (m) of its quadrature point.
 struct JacobianAt {
   double value = 0.0;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
 };
 
-// The committed state's smallest J of a discretisation's problem (iga::Problem, tet::TetProblem:
-// committed_min_jacobian() and space().position(element, point)) as a JacobianAt.
+// The smallest and the largest J of a state.
+struct JacobianRangeAt {
+  JacobianAt smallest, largest;
+};
+
+// The committed state's J range of a discretisation's problem (iga::Problem, tet::TetProblem:
+// committed_jacobian_range() and space().position(element, point)) as a JacobianRangeAt.
 template <class Problem>
-std::optional<JacobianAt> committed_min_jacobian_of(const Problem& problem) {
-  const auto& m = problem.committed_min_jacobian();
-  if (!m.found())
+std::optional<JacobianRangeAt> committed_jacobian_range_of(const Problem& problem) {
+  const auto& r = problem.committed_jacobian_range();
+  if (!r.found())
     return std::nullopt;
-  return JacobianAt{m.value, problem.space().position(m.element, m.point)};
+  const auto at = [&](const auto& p) {
+    return JacobianAt{p.value, problem.space().position(p.element, p.point)};
+  };
+  return JacobianRangeAt{at(r.smallest), at(r.largest)};
 }
 
 class RunModel {
@@ -68,8 +76,9 @@ class RunModel {
   virtual double committed_time() const = 0;
   virtual double current_volume() const = 0;    // m^3
   virtual double max_displacement() const = 0;  // m, over the output points
-  // Over the quadrature points of the committed state; nullopt before the first commit.
-  virtual std::optional<JacobianAt> committed_min_jacobian() const = 0;
+  // Smallest and largest J over the quadrature points of the committed state; nullopt before the
+  // first commit.
+  virtual std::optional<JacobianRangeAt> committed_jacobian_range() const = 0;
 };
 
 }  // namespace isomuscle::io

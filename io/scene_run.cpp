@@ -284,8 +284,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   int steps = 0;
   double min_rcond = 1.0;
   bool factorised = false;
-  std::optional<JacobianAt> min_jacobian;  // over the converged steps
-  double min_jacobian_time = 0.0;
+  // The smallest and the largest J over the converged steps, and when each was reached.
+  std::optional<JacobianAt> min_jacobian, max_jacobian;
+  double min_jacobian_time = 0.0, max_jacobian_time = 0.0;
   std::vector<double> probe_row;
   std::optional<std::vector<double>> last_probes;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
@@ -330,10 +331,15 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         factorised = true;
         min_rcond = std::min(min_rcond, n.min_rcond);
       }
-      if (const std::optional<JacobianAt> J = model->committed_min_jacobian();
-          J && (!min_jacobian || J->value < min_jacobian->value)) {
-        min_jacobian = J;
-        min_jacobian_time = r.time;
+      if (const std::optional<JacobianRangeAt> J = model->committed_jacobian_range()) {
+        if (!min_jacobian || J->smallest.value < min_jacobian->value) {
+          min_jacobian = J->smallest;
+          min_jacobian_time = r.time;
+        }
+        if (!max_jacobian || J->largest.value > max_jacobian->value) {
+          max_jacobian = J->largest;
+          max_jacobian_time = r.time;
+        }
       }
       write_newton_rows(r.step, r.time, r.dt, n, true);
       model->probe_values(probe_row);
@@ -398,13 +404,15 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
                              {"tangent_evaluations", ns.tangent_evaluations}};
   }
   s.extra["time"] = Json{{"end", scene.time.end}, {"reached", result.time_reached}};
-  s.extra["min_jacobian"] = min_jacobian
-                                ? Json{{"value", min_jacobian->value},
-                                       {"time", min_jacobian_time},
-                                       {"position",
-                                        {min_jacobian->position.x(), min_jacobian->position.y(),
-                                         min_jacobian->position.z()}}}
-                                : Json(nullptr);
+  const auto jacobian_json = [](const std::optional<JacobianAt>& J, double time) {
+    if (!J)
+      return Json(nullptr);
+    return Json{{"value", J->value},
+                {"time", time},
+                {"position", {J->position.x(), J->position.y(), J->position.z()}}};
+  };
+  s.extra["min_jacobian"] = jacobian_json(min_jacobian, min_jacobian_time);
+  s.extra["max_jacobian"] = jacobian_json(max_jacobian, max_jacobian_time);
   s.extra["outputs"] =
       Json{{"fields", model->field_steps() > 0 ? Json("fields.xdmf") : Json(nullptr)},
            {"field_steps", model->field_steps()},

@@ -15,7 +15,9 @@
 //
 // The folder then holds:
 //   summary.json   status "converged" | "failed" (+ reason), sizes, Newton statistics, step cuts,
-//                  linear solver statistics, wall seconds per phase, volumes, max |u|, probes
+//                  linear solver statistics, wall seconds per phase, volumes, max |u|, the
+//                  smallest and largest J over the quadrature points (min_jacobian,
+//                  max_jacobian: value, time, reference position), probes
 //   fields.xdmf    ParaView index of fields.h5 (deformed tessellation per output time)
 //   solution.h5    the geometry, the refined solid and its control-point displacements at each
 //                  output time and at the last converged one (solution_file.hpp): what

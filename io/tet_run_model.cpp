@@ -78,8 +78,8 @@ class TetRunModel final : public RunModel {
   double solution_last_time() const override { return solution_->last_time(); }
 
   double committed_time() const override { return model_.problem->committed_time(); }
-  std::optional<JacobianAt> committed_min_jacobian() const override {
-    return committed_min_jacobian_of(*model_.problem);
+  std::optional<JacobianRangeAt> committed_jacobian_range() const override {
+    return committed_jacobian_range_of(*model_.problem);
   }
   double current_volume() const override {
     return model_.problem->current_volume(model_.problem->committed_displacement());

@@ -208,7 +208,7 @@ solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, boo
   const int nqp = space_.points_per_element();
   const int nen = space_.nodes_per_element();
   const std::size_t hs = static_cast<std::size_t>(history_size_);
-  thread_min_J_.assign(workspaces_.size(), continuum::JacobianMinimum{});
+  thread_J_range_.assign(workspaces_.size(), continuum::JacobianRange{});
   auto body = [&](int e, int thread) -> solver::EvaluationStatus {
     ElementWorkspace& ws = workspaces_[thread];
     const auto el = space_.mesh().element(e);
@@ -224,7 +224,7 @@ solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, boo
     if (!ks.ok()) {
       return solver::EvaluationStatus::failure(describe_failure(e, ks));
     }
-    thread_min_J_[thread].take_element(e, std::span<const double>(ws.J.data(), nqp));
+    thread_J_range_[thread].take_element(e, std::span<const double>(ws.J.data(), nqp));
     if (mixed)
       bases_.store(pass, e, ws);
     const auto& dofs = element_dofs_[e];
@@ -274,7 +274,7 @@ solver::EvaluationStatus TetProblem::evaluate(const Eigen::VectorXd& u, Eigen::V
   if (!status.ok) {
     return status;
   }
-  evaluated_min_J_ = continuum::JacobianMinimum::of(thread_min_J_);
+  evaluated_J_range_ = continuum::JacobianRange::of(thread_J_range_);
   residual.resize(num_free_);
   for (int d = 0; d < f_int_.size(); ++d) {
     if (free_index_[d] >= 0) {
@@ -303,7 +303,7 @@ void TetProblem::commit_step(const Eigen::VectorXd& u) {
   }
   history_previous_.swap(history_committed_);
   history_committed_ = history_trial_;
-  committed_min_J_ = evaluated_min_J_;
+  committed_J_range_ = evaluated_J_range_;
   if (formulation_ == Formulation::mixed)
     bases_.commit();
   committed_full_ = full_displacement(u);

@@ -23,7 +23,7 @@
 
 #include "continuum/element_kernels.hpp"
 #include "continuum/formulation.hpp"
-#include "continuum/jacobian_minimum.hpp"
+#include "continuum/jacobian_range.hpp"
 #include "continuum/mixed_bases.hpp"
 #include "continuum/point_state.hpp"
 #include "materials/material_law.hpp"
@@ -113,9 +113,9 @@ class TetProblem : public solver::NonlinearProblem {
   const Eigen::VectorXd& committed_displacement() const { return committed_full_; }
   std::span<const double> committed_history(int element, int point) const;
   double committed_time() const { return committed_time_; }
-  // Smallest J = det F over the quadrature points of the committed state (its element and local
-  // point; found() is false before the first commit).
-  const continuum::JacobianMinimum& committed_min_jacobian() const { return committed_min_J_; }
+  // Smallest and largest J = det F over the quadrature points of the committed state (with their
+  // elements and local points; found() is false before the first commit).
+  const continuum::JacobianRange& committed_jacobian_range() const { return committed_J_range_; }
   // State at quadrature point q of element e in the committed state: the element kernel re-run at
   // the committed displacement with the history from before the committed step (so the converged
   // stress is reproduced exactly, also for rate-dependent laws). Throws std::invalid_argument for
@@ -166,8 +166,8 @@ class TetProblem : public solver::NonlinearProblem {
   solver::ElementColouring colouring_;
   std::vector<ElementWorkspace> workspaces_;
   // Per thread during an assembly pass; of the last successful evaluate(); of the committed state.
-  std::vector<continuum::JacobianMinimum> thread_min_J_;
-  continuum::JacobianMinimum evaluated_min_J_, committed_min_J_;
+  std::vector<continuum::JacobianRange> thread_J_range_;
+  continuum::JacobianRange evaluated_J_range_, committed_J_range_;
   int history_size_ = 0;
   std::vector<double> history_committed_, history_trial_;
   std::vector<double> history_previous_;  // committed history before the last commit

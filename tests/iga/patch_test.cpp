@@ -36,6 +36,7 @@ struct PatchErrors {
   double F = 0.0;      // max |F_h - F0| (entries) over the quadrature points
   double S = 0.0;      // max |S_h - S0| / |S0|
   double min_J = 0.0;  // |smallest J of the committed state - det F0|
+  double max_J = 0.0;  // |largest J of the committed state - det F0|
   int iterations = 0;
 };
 
@@ -85,19 +86,23 @@ PatchErrors run_patch(const geometry::NurbsVolume& vol, const std::vector<Side>&
   materials::PointResult exact;
   law->evaluate(in, exact, false);
   double min_J = std::numeric_limits<double>::infinity();
+  double max_J = -std::numeric_limits<double>::infinity();
   for (int e = 0; e < space.num_elements(); ++e) {
     for (const PointState& st : problem.element_states(e)) {
       err.F = std::max(err.F, (st.field.F - F0).cwiseAbs().maxCoeff());
       err.S = std::max(err.S, (st.S - exact.S).norm() / exact.S.norm());
       min_J = std::min(min_J, st.J);
+      max_J = std::max(max_J, st.J);
     }
   }
-  // The committed state's smallest J (kept during assembly, per thread) is the smallest J of its
-  // element states (det F0 where the patch is exact).
-  const continuum::JacobianMinimum& jm = problem.committed_min_jacobian();
-  EXPECT_TRUE(jm.found());
-  EXPECT_DOUBLE_EQ(jm.value, min_J);
-  err.min_J = std::abs(jm.value - F0.determinant());
+  // The committed state's smallest and largest J (kept during assembly, per thread) are those of
+  // its element states (det F0 where the patch is exact).
+  const continuum::JacobianRange& jr = problem.committed_jacobian_range();
+  EXPECT_TRUE(jr.found());
+  EXPECT_DOUBLE_EQ(jr.smallest.value, min_J);
+  EXPECT_DOUBLE_EQ(jr.largest.value, max_J);
+  err.min_J = std::abs(jr.smallest.value - F0.determinant());
+  err.max_J = std::abs(jr.largest.value - F0.determinant());
   return err;
 }
 
@@ -120,6 +125,7 @@ void bspline_patch(int p) {
         p, to_string(f), exact_points, e.F, e.S, e.iterations);
     EXPECT_LT(e.F, 1e-10) << "p = " << p << " " << to_string(f);
     EXPECT_LT(e.min_J, 1e-10) << "p = " << p << " " << to_string(f);
+    EXPECT_LT(e.max_J, 1e-10) << "p = " << p << " " << to_string(f);
     EXPECT_LT(e.S, 1e-10) << "p = " << p << " " << to_string(f);
   }
 }
@@ -154,6 +160,7 @@ void polynomial_cylinder_patch(int p) {
         e.iterations);
     EXPECT_LT(e.F, 1e-10) << "p = " << p << " " << to_string(f);
     EXPECT_LT(e.min_J, 1e-10) << "p = " << p << " " << to_string(f);
+    EXPECT_LT(e.max_J, 1e-10) << "p = " << p << " " << to_string(f);
     EXPECT_LT(e.S, 1e-10) << "p = " << p << " " << to_string(f);
   }
 }

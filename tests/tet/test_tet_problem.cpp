@@ -113,12 +113,15 @@ TEST_P(PatchTest, AffineDisplacementReproduced) {
   EXPECT_LT(worst, 1e-10);
   // The committed state reproduces the law's stress at F = I + A (mixed: p~ = U'(J~) with J~ = J).
   problem.commit_step(u);
-  // The smallest J of the committed state: det(I + A) at every point, found during assembly.
-  const continuum::JacobianMinimum& jm = problem.committed_min_jacobian();
-  ASSERT_TRUE(jm.found());
-  EXPECT_NEAR(jm.value, (Eigen::Matrix3d::Identity() + A).determinant(), 1e-10);
-  EXPECT_LT(jm.element, space.num_elements());
-  EXPECT_LT(jm.point, space.points_per_element());
+  // The smallest and largest J of the committed state: det(I + A) at every point, found during
+  // assembly.
+  const continuum::JacobianRange& jr = problem.committed_jacobian_range();
+  ASSERT_TRUE(jr.found());
+  for (const continuum::JacobianAtPoint& j : {jr.smallest, jr.largest}) {
+    EXPECT_NEAR(j.value, (Eigen::Matrix3d::Identity() + A).determinant(), 1e-10);
+    EXPECT_LT(j.element, space.num_elements());
+    EXPECT_LT(j.point, space.points_per_element());
+  }
   const TetPointState st = problem.state_at_point(space.num_elements() - 1, 0);
   materials::PointInput in;
   in.F = Eigen::Matrix3d::Identity() + A;
