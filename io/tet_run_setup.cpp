@@ -166,7 +166,15 @@ TetModel build_tet_model(const Scene& scene, int threads) {
     tet::MeshingOptions mo;
     mo.element_size = t.element_size;
     mo.order = t.order;
-    model.mesh = std::make_unique<tet::TetMesh>(tet::mesh_iges(g.iges, mo));
+    int straightened = 0;
+    model.mesh = std::make_unique<tet::TetMesh>(tet::mesh_iges(g.iges, mo, &straightened));
+    if (straightened > 0) {
+      model.notes.push_back(
+          std::to_string(straightened) + " of " + std::to_string(model.mesh->num_elements()) +
+          " 10-node tetrahedra folded over where gmsh curved them onto the boundary and were "
+          "made straight-sided (the surface turns faster than element_size resolves; a smaller "
+          "element_size keeps more of the curvature)");
+    }
   } else {
     model.mesh = std::make_unique<tet::TetMesh>(tet::read_msh(t.mesh, t.mesh_unit));
     if (model.mesh->order != t.order) {

@@ -12,6 +12,8 @@
 #include <string>
 #include <unordered_map>
 
+#include "tet/curved_tet_repair.hpp"
+
 namespace isomuscle::tet {
 
 namespace {
@@ -176,7 +178,19 @@ TetMesh extract_mesh(const std::string& file, double scale) {
 
 // A volume from the imported faces: the open boundary curves of the faces (a tube's two end
 // circles: the shrink solids of thesis 5.13 have flat ends that the boundary surface lacks) are
-// capped by filling surfaces, and all faces are sewn into one shell.
+// capped, and all faces are sewn into one shell. A planar end gets a plane surface, any other a
+// filling surface: gmsh 4.8 cannot mesh the filling of the depressor anguli oris's flat 30 x 2 mm
+// end ellipse ("Unable to recover the edge" at every element size from 0.5 to 1.2 mm), and meshes
+// its plane cap.
+void cap_open_curve(int curve, std::vector<int>& tags) {
+  const int loop = gmsh::model::occ::addCurveLoop({std::abs(curve)});
+  try {
+    tags.push_back(gmsh::model::occ::addPlaneSurface({loop}));
+  } catch (const std::string&) {  // not planar
+    tags.push_back(gmsh::model::occ::addSurfaceFilling(loop));
+  }
+}
+
 void make_volume_from_faces(const std::string& name) {
   gmsh::vectorpair faces;
   gmsh::model::occ::getEntities(faces, 2);
@@ -191,11 +205,40 @@ void make_volume_from_faces(const std::string& name) {
     tags.push_back(tag);
   }
   for (const auto& [dim, curve] : open_curves) {
-    const int loop = gmsh::model::occ::addCurveLoop({std::abs(curve)});
-    tags.push_back(gmsh::model::occ::addSurfaceFilling(loop));
+    cap_open_curve(curve, tags);
   }
   const int shell = gmsh::model::occ::addSurfaceLoop(tags, -1, true);
   gmsh::model::occ::addVolume({shell});
+}
+
+// gmsh::model::mesh::generate and setOrder with gmsh's errors turned into std::runtime_error.
+// gmsh meshes surfaces inside an OpenMP parallel region (even on one thread), and an error there
+// thrown as std::string cannot leave the region: the process ends in std::terminate (seen with
+// the depressor anguli oris's filled end caps). With General.AbortOnError = 1 gmsh abandons the
+// mesh instead of throwing; its error lines are read back from its logger.
+void generate_contained(const std::string& name, int order) {
+  double abort_on_error = 2.0;
+  gmsh::option::getNumber("General.AbortOnError", abort_on_error);
+  gmsh::option::setNumber("General.AbortOnError", 1);
+  gmsh::logger::start();
+  gmsh::model::mesh::generate(3);
+  if (order == 2) {
+    gmsh::model::mesh::setOrder(2);
+  }
+  std::vector<std::string> log;
+  gmsh::logger::get(log);
+  gmsh::logger::stop();
+  gmsh::option::setNumber("General.AbortOnError", abort_on_error);
+  std::string errors;
+  for (const std::string& line : log) {
+    if (line.rfind("Error", 0) == 0 && errors.find(line) == std::string::npos) {
+      errors += (errors.empty() ? "" : "; ") + line;
+    }
+  }
+  if (!errors.empty()) {
+    throw std::runtime_error("gmsh could not mesh '" + name + "': " + errors +
+                             " (another element_size may mesh)");
+  }
 }
 
 }  // namespace
@@ -215,7 +258,8 @@ void MeshingOptions::validate() const {
 }
 
 // Import, heal and sew the faces, make a volume, mesh it (TOOLING.md, gmsh 4.8).
-TetMesh mesh_iges(const std::filesystem::path& file, const MeshingOptions& options) {
+TetMesh mesh_iges(const std::filesystem::path& file, const MeshingOptions& options,
+                  int* straightened) {
   options.validate();
   const std::string name = file.string();
   if (!std::filesystem::is_regular_file(file)) {
@@ -241,11 +285,12 @@ TetMesh mesh_iges(const std::filesystem::path& file, const MeshingOptions& optio
     gmsh::option::setNumber("Mesh.MeshSizeMax", options.element_size);
     gmsh::option::setNumber("Mesh.MeshSizeMin", 0.1 * options.element_size);
     gmsh::option::setNumber("General.NumThreads", options.threads);
-    gmsh::model::mesh::generate(3);
-    if (options.order == 2) {
-      gmsh::model::mesh::setOrder(2);
-    }
-    return extract_mesh(name, 1.0);
+    generate_contained(name, options.order);
+    TetMesh mesh = extract_mesh(name, 1.0);
+    const int repaired = straighten_folded_elements(mesh);
+    if (straightened)
+      *straightened = repaired;
+    return mesh;
   } catch (const std::string& what) {
     throw std::runtime_error("gmsh could not mesh '" + name + "': " + what);
   }

@@ -22,9 +22,12 @@ struct MeshingOptions {
 // forming a closed boundary; or a B-rep solid). The surfaces are healed and sewn into a shell, a
 // volume is made from it and meshed. OpenCASCADE converts the file's unit to metres
 // (Geometry.OCCTargetUnit = "M"). Boundary triangles are tagged by the gmsh surface entity.
+// 10-node elements that gmsh curved until they fold over are made straight-sided
+// (curved_tet_repair.hpp); their number is written to *straightened when given.
 // Throws std::runtime_error naming the file when it cannot be read, does not bound a volume, or
 // gmsh fails.
-TetMesh mesh_iges(const std::filesystem::path& file, const MeshingOptions& options);
+TetMesh mesh_iges(const std::filesystem::path& file, const MeshingOptions& options,
+                  int* straightened = nullptr);
 
 // Reads a gmsh .msh file (any version gmsh reads) holding 4- or 10-node tetrahedra: physical
 // volume groups become element regions, physical surface groups the boundary tags (entity tags
