@@ -32,6 +32,20 @@ std::string status_text(int status) {
   }
 }
 
+// The 64-bit index version of UMFPACK (umfpack_dl_*): the 32-bit one (umfpack_di_*) addresses its
+// numeric object in int-sized units and answers "out of memory" once the estimate passes 2^31
+// units, whatever memory the machine has. Seen at 152k unknowns (the DAO on 0.6 mm 10-node
+// tetrahedra: an indefinite tangent whose LU fallback failed, so the step was cut), and on a
+// 3 x 30^3 pattern of 27-point 3D couplings: umfpack_di estimated 1.8e9 units and failed,
+// umfpack_dl factorised it in 4 GB.
+using Index = SuiteSparse_long;
+
+// The column pointers and row indices of a as UMFPACK's 64-bit indices.
+void copy_pattern(const SparseMatrix& a, std::vector<Index>& columns, std::vector<Index>& rows) {
+  columns.assign(a.outerIndexPtr(), a.outerIndexPtr() + a.outerSize() + 1);
+  rows.assign(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros());
+}
+
 void check_matrix(const SparseMatrix& a, const char* where) {
   if (a.rows() != a.cols() || !a.isCompressed()) {
     throw std::invalid_argument(std::string("UmfpackLu::") + where +
@@ -45,18 +59,21 @@ void check_matrix(const SparseMatrix& a, const char* where) {
 struct UmfpackLu::Impl {
   void* symbolic = nullptr;
   void* numeric = nullptr;
-  int n = -1;
+  Index n = -1;
   double rcond = 0.0;
-  SparseMatrix matrix;  // the factorised matrix, for iterative refinement in solve
+  // The factorised matrix, for iterative refinement in solve: its values, and its pattern in
+  // 64-bit indices.
+  SparseMatrix matrix;
+  std::vector<Index> columns, rows;
   std::vector<double> control = std::vector<double>(UMFPACK_CONTROL);
   std::vector<double> info = std::vector<double>(UMFPACK_INFO);
-  std::vector<int> wi;  // umfpack_di_wsolve workspace, reused
+  std::vector<Index> wi;  // umfpack_dl_wsolve workspace, reused
   std::vector<double> w;
 
-  Impl() { umfpack_di_defaults(control.data()); }
+  Impl() { umfpack_dl_defaults(control.data()); }
   ~Impl() {
-    umfpack_di_free_numeric(&numeric);
-    umfpack_di_free_symbolic(&symbolic);
+    umfpack_dl_free_numeric(&numeric);
+    umfpack_dl_free_symbolic(&symbolic);
   }
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
@@ -67,24 +84,26 @@ UmfpackLu::~UmfpackLu() = default;
 UmfpackLu::UmfpackLu(UmfpackLu&&) noexcept = default;
 UmfpackLu& UmfpackLu::operator=(UmfpackLu&&) noexcept = default;
 
-// Symbolic analysis: column pre-ordering Q and frontal matrix structure (umfpack_di_symbolic).
+// Symbolic analysis: column pre-ordering Q and frontal matrix structure (umfpack_dl_symbolic).
 void UmfpackLu::analyze(const SparseMatrix& a) {
   check_matrix(a, "analyze");
   Impl& s = *impl_;
-  umfpack_di_free_numeric(&s.numeric);
-  umfpack_di_free_symbolic(&s.symbolic);
-  const int n = static_cast<int>(a.rows());
-  const int status = umfpack_di_symbolic(n, n, a.outerIndexPtr(), a.innerIndexPtr(), a.valuePtr(),
-                                         &s.symbolic, s.control.data(), s.info.data());
+  umfpack_dl_free_numeric(&s.numeric);
+  umfpack_dl_free_symbolic(&s.symbolic);
+  const Index n = a.rows();
+  copy_pattern(a, s.columns, s.rows);
+  const int status =
+      static_cast<int>(umfpack_dl_symbolic(n, n, s.columns.data(), s.rows.data(), a.valuePtr(),
+                                           &s.symbolic, s.control.data(), s.info.data()));
   if (status != UMFPACK_OK) {
-    umfpack_di_free_symbolic(&s.symbolic);
+    umfpack_dl_free_symbolic(&s.symbolic);
     throw std::runtime_error("UMFPACK symbolic analysis of a " + std::to_string(n) + " x " +
                              std::to_string(n) + " matrix failed: " + status_text(status));
   }
   s.n = n;
 }
 
-// Numeric factorisation P R^{-1} A Q = L U with row scaling R (umfpack_di_numeric).
+// Numeric factorisation P R^{-1} A Q = L U with row scaling R (umfpack_dl_numeric).
 LuStatus UmfpackLu::factorize(const SparseMatrix& a) {
   check_matrix(a, "factorize");
   Impl& s = *impl_;
@@ -95,13 +114,15 @@ LuStatus UmfpackLu::factorize(const SparseMatrix& a) {
     throw std::invalid_argument("UmfpackLu::factorize: matrix has " + std::to_string(a.rows()) +
                                 " rows but the analysis was for " + std::to_string(s.n));
   }
-  umfpack_di_free_numeric(&s.numeric);
-  const int status = umfpack_di_numeric(a.outerIndexPtr(), a.innerIndexPtr(), a.valuePtr(),
-                                        s.symbolic, &s.numeric, s.control.data(), s.info.data());
+  umfpack_dl_free_numeric(&s.numeric);
+  copy_pattern(a, s.columns, s.rows);
+  const int status =
+      static_cast<int>(umfpack_dl_numeric(s.columns.data(), s.rows.data(), a.valuePtr(), s.symbolic,
+                                          &s.numeric, s.control.data(), s.info.data()));
   LuStatus result;
   s.rcond = s.info[UMFPACK_RCOND];
   if (status == UMFPACK_WARNING_singular_matrix) {
-    umfpack_di_free_numeric(&s.numeric);
+    umfpack_dl_free_numeric(&s.numeric);
     result.singular = true;
     char rcond[32];
     std::snprintf(rcond, sizeof(rcond), "%.3e", s.rcond);
@@ -111,7 +132,7 @@ LuStatus UmfpackLu::factorize(const SparseMatrix& a) {
     return result;
   }
   if (status != UMFPACK_OK) {
-    umfpack_di_free_numeric(&s.numeric);
+    umfpack_dl_free_numeric(&s.numeric);
     result.message = "LU factorisation failed: UMFPACK " + status_text(status);
     return result;
   }
@@ -120,7 +141,7 @@ LuStatus UmfpackLu::factorize(const SparseMatrix& a) {
   return result;
 }
 
-// x = A^{-1} b = Q U^{-1} L^{-1} P R^{-1} b (umfpack_di_wsolve, reused workspace), followed by
+// x = A^{-1} b = Q U^{-1} L^{-1} P R^{-1} b (umfpack_dl_wsolve, reused workspace), followed by
 // UMFPACK's default of up to two steps of iterative refinement with the factorised matrix.
 void UmfpackLu::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Impl& s = *impl_;
@@ -134,9 +155,9 @@ void UmfpackLu::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   x.resize(s.n);
   s.wi.resize(static_cast<std::size_t>(s.n));
   s.w.resize(5 * static_cast<std::size_t>(s.n));
-  const int status = umfpack_di_wsolve(
-      UMFPACK_A, s.matrix.outerIndexPtr(), s.matrix.innerIndexPtr(), s.matrix.valuePtr(), x.data(),
-      b.data(), s.numeric, s.control.data(), s.info.data(), s.wi.data(), s.w.data());
+  const int status = static_cast<int>(umfpack_dl_wsolve(
+      UMFPACK_A, s.columns.data(), s.rows.data(), s.matrix.valuePtr(), x.data(), b.data(),
+      s.numeric, s.control.data(), s.info.data(), s.wi.data(), s.w.data()));
   if (status != UMFPACK_OK) {
     throw std::runtime_error("UMFPACK solve failed: " + status_text(status));
   }
