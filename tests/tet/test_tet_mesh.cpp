@@ -2,10 +2,13 @@
 // boundary against the volume of the NURBS solid.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 
 #include "geometry/iges.hpp"
+#include "geometry/shapes.hpp"
 #include "geometry/shrink.hpp"
 #include "geometry/volume_measures.hpp"
 #include "tet/curved_tet_repair.hpp"
@@ -173,6 +176,43 @@ TEST(MeshIges, FlatDaoMeshesWithItsFoldedElementsStraightened) {
     EXPECT_LT(std::abs(rel), previous_error) << size;
     previous_error = std::abs(rel);
   }
+}
+
+// A boundary gmsh cannot mesh ends in a runtime_error that names the file and gives gmsh's own
+// words: a straight elliptic tube whose top end curve is bent into a saddle (2 mm up on the long
+// axis, down on the short one). Its end is not planar, so it is capped by a filling surface. Run
+// alone, the filling is built, overlaps the tube, and meshing fails ("Error: Invalid boundary
+// mesh (overlapping facets)", read back from gmsh's logger); after other gmsh sessions in the
+// same process the filling itself fails ("Could not build surface filling", thrown). Before, an
+// error inside gmsh's parallel surface meshing ended the process, and at the session's
+// verbosity 0 gmsh's logger held no error line to report ("holds no tetrahedra").
+TEST(MeshIges, BoundaryGmshCannotMeshGivesGmshsErrorNamingTheFile) {
+  const std::vector<Eigen::Vector3d> centres = {{0, 0, 0}, {0, 0, 0.01}, {0, 0, 0.02}};
+  const std::vector<Eigen::Vector3d> first(3, Eigen::Vector3d(0.006, 0, 0));
+  const std::vector<Eigen::Vector3d> second(3, Eigen::Vector3d(0, 0.004, 0));
+  const geometry::NurbsSurface tube =
+      geometry::elliptic_tube(geometry::KnotVector::clamped(2, {}), centres, first, second);
+  std::vector<Eigen::Vector3d> points = tube.points();
+  const int top = tube.count_v() - 1;
+  for (int i = 0; i < tube.count_u(); i += 2)
+    points[i + tube.count_u() * top].z() += i % 4 == 0 ? 0.002 : -0.002;
+  const geometry::NurbsSurface bent(tube.knots_u(), tube.knots_v(), points, tube.weights());
+  const std::filesystem::path file = std::filesystem::temp_directory_path() /
+                                     ("isomuscle_bent_end_" + std::to_string(getpid()) + ".igs");
+  geometry::write_iges(file, {bent});
+  MeshingOptions opt;
+  opt.order = 2;
+  opt.element_size = 0.002;
+  try {
+    mesh_iges(file, opt);
+    ADD_FAILURE() << "gmsh meshed the bent tube: pick a boundary it cannot mesh";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    const std::string head = "gmsh could not mesh '" + file.string() + "': ";
+    EXPECT_EQ(what.rfind(head, 0), 0u) << what;
+    EXPECT_GT(what.size(), head.size() + 10) << what;  // gmsh's own words follow
+  }
+  std::filesystem::remove(file);
 }
 
 // One edge node of a structured box pushed through its element's opposite face folds the
