@@ -37,7 +37,9 @@ class GmshSession {
     Message::DefaultMessenger()->ChangePrinters().Clear();
     gmsh::initialize(0, nullptr, false);
     gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 0);
+    // Errors only: with Terminal = 0 nothing is printed, and gmsh's logger (generate_contained)
+    // records nothing at verbosity 0, which left a failed mesh without gmsh's reason.
+    gmsh::option::setNumber("General.Verbosity", 1);
   }
   ~GmshSession() {
     try {
@@ -215,15 +217,12 @@ void make_volume_from_faces(const std::string& name) {
 // gmsh meshes surfaces inside an OpenMP parallel region (even on one thread), and an error there
 // thrown as std::string cannot leave the region: the process ends in std::terminate (seen with
 // the depressor anguli oris's filled end caps). With General.AbortOnError = 1 gmsh abandons the
-// mesh instead of throwing; its error lines are read back from its logger, which records nothing
-// at the session's General.Verbosity = 0, so errors are let through (1) while it runs.
+// mesh instead of throwing; its error lines are read back from its logger (GmshSession keeps
+// General.Verbosity at 1 so that the logger records them).
 void generate_contained(const std::string& name, int order) {
   double abort_on_error = 2.0;
   gmsh::option::getNumber("General.AbortOnError", abort_on_error);
   gmsh::option::setNumber("General.AbortOnError", 1);
-  double verbosity = 0.0;
-  gmsh::option::getNumber("General.Verbosity", verbosity);
-  gmsh::option::setNumber("General.Verbosity", std::max(verbosity, 1.0));
   gmsh::logger::start();
   gmsh::model::mesh::generate(3);
   if (order == 2) {
@@ -233,7 +232,6 @@ void generate_contained(const std::string& name, int order) {
   gmsh::logger::get(log);
   gmsh::logger::stop();
   gmsh::option::setNumber("General.AbortOnError", abort_on_error);
-  gmsh::option::setNumber("General.Verbosity", verbosity);
   std::string errors;
   for (const std::string& line : log) {
     if (line.rfind("Error", 0) == 0 && errors.find(line) == std::string::npos) {
