@@ -1,0 +1,158 @@
+#!/usr/bin/env python3
+"""The DAO's anterior y on IGA and tetrahedral meshes (validation/suite/README.md, 2026-12-04).
+
+Runs copies of examples/dao/contract.toml (IGA, `knot_insertion` changed) and contract-tet.toml
+(`element_size` changed) with four more point probes on the mouth-corner end face, at half its
+semi-axes (+-1.5 mm across the width, +-1 mm across the thickness from the centre (4, 2, 34) mm),
+and writes OUT/dao_mesh_study.md with three tables:
+
+* the end's y at the centre probe (on the shrink solid's collapsed axis) and the mean of the four
+  off-axis probes, with the smallest pointwise J of the run (summary.json's min_jacobian);
+* u_y along the centreline (IGA: the tessellation points of fields.h5 that are shared by the
+  cells around the collapsed axis; tetrahedra: the mean of the nodes within 0.4 mm of the finest
+  IGA run's axis, at the same reference heights z);
+* the fibre stretch in the first 2 mm next to the clamped jaw face, IGA runs only (hexahedra of fields.h5,
+  F of the trilinear tessellation cell, lambda = 1 / |F^-1 a| with a the deformed fibre).
+
+Usage: /usr/bin/python3 validation/suite/dao_mesh_study.py [--out OUT] [--jobs N] [--reuse]
+       [--meshes iga:3,15,7 tet:0.00075 ...]
+The default meshes are those of the README table (about 3 h on one core; --jobs 2 halves it).
+"""
+import argparse
+import concurrent.futures
+import os
+import re
+
+import numpy as np
+
+from run_suite import ROOT, fields_last_step, run
+
+DEFAULT_MESHES = ["iga:3,1,1", "iga:3,3,3", "iga:3,7,7", "iga:3,7,15", "iga:3,15,7", "iga:3,15,15",
+                  "iga:3,31,3", "tet:0.001", "tet:0.00075", "tet:0.0006"]
+END_CENTRE = np.array([0.004, 0.002, 0.034])
+BEFORE_END = np.array([0.0035, 0.004, 0.029])  # the centreline's last two section centres:
+HALF_WIDTH, HALF_THICKNESS = 0.0015, 0.001  # geometry/shapes.cpp, depressor_anguli_oris
+HEIGHTS_MM = [2, 3, 5, 8, 12, 17, 22, 27, 31, 34]
+
+
+def end_face_points():
+    """The four off-axis points of the end face: the end section's frame as the stand-in builds it."""
+    t = (END_CENTRE - BEFORE_END) / np.linalg.norm(END_CENTRE - BEFORE_END)
+    e1 = np.array([1.0, 0.0, 0.0]) - t[0] * t
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(t, e1)
+    return {"a": END_CENTRE + HALF_WIDTH * e1, "b": END_CENTRE - HALF_WIDTH * e1,
+            "c": END_CENTRE + HALF_THICKNESS * e2, "d": END_CENTRE - HALF_THICKNESS * e2}
+
+
+def scene(mesh, folder):
+    """Scene copy for 'iga:i,j,k' (knot insertion) or 'tet:h' (element size, m); returns its path."""
+    kind, value = mesh.split(":")
+    base = os.path.join(ROOT, "examples", "dao", "contract.toml" if kind == "iga" else
+                        "contract-tet.toml")
+    text = open(base).read().replace("../geometry/dao.igs",
+                                     os.path.join(ROOT, "examples", "geometry", "dao.igs"))
+    if kind == "iga":
+        text, n = re.subn(r"knot_insertion = \[[^\]]*\]", "knot_insertion = [%s]" %
+                          value.replace(",", ", "), text)
+    else:
+        text, n = re.subn(r"element_size = [0-9.e-]+", "element_size = %s" % value, text)
+    if n != 1:
+        raise SystemExit("dao_mesh_study: cannot set the mesh '%s' in %s" % (mesh, base))
+    text = re.sub(r"times = \[[^\]]*\]", "times = [0.2]", text)
+    for name, p in end_face_points().items():
+        for c in "xyz":
+            text += ('\n[[probe]]\nname = "end_%s_%s"\nkind = "point_displacement"\n'
+                     'point = [%.17g, %.17g, %.17g]\ncomponent = "%s"\n' % (name, c, *p, c))
+    path = os.path.join(folder, "dao_%s_%s.toml" % (kind, value.replace(",", "_")))
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def axis_points(points):
+    """Indices of the tessellation points on the collapsed axis, ordered by z."""
+    key = np.round(points * 1e8).astype(np.int64)
+    _, first, counts = np.unique(key, axis=0, return_index=True, return_counts=True)
+    on_axis = first[counts >= 8]
+    return on_axis[np.argsort(points[on_axis, 2])]
+
+
+def centreline_uy(run_dir, is_iga, axis):
+    """u_y (mm) at HEIGHTS_MM on the centreline; axis: reference axis points of an IGA run."""
+    x, u, _ = fields_last_step(run_dir)
+    z = np.array(HEIGHTS_MM) / 1000.0
+    if is_iga:
+        own = axis_points(x)
+        return 1000.0 * np.interp(z, x[own, 2], u[own, 1])
+    row = []
+    for h in z:
+        p = np.array([np.interp(h, axis[:, 2], axis[:, i]) for i in range(3)])
+        near = np.linalg.norm(x - p, axis=1) < 0.4e-3
+        row.append(1000.0 * u[near, 1].mean() if near.any() else float("nan"))
+    return np.array(row)
+
+
+def root_fibre_stretch(run_dir):
+    """(min, max) fibre stretch of the IGA tessellation's hexahedra centred within 2 mm of the jaw
+    face; None when no cell is centred there."""
+    import h5py
+    x, u, cells = fields_last_step(run_dir)
+    with h5py.File(os.path.join(run_dir, "fields.h5"), "r") as f:
+        step = sorted(k for k in f.keys() if k.startswith("step_"))[-1]
+        fibre = np.array(f[step]["cell/fibre"])
+    corners = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1], [-1, -1, 1],
+                        [1, -1, 1], [1, 1, 1], [-1, 1, 1]], float) / 8.0
+    stretches = []
+    for cell, a in zip(cells, fibre):
+        if x[cell, 2].mean() > 0.002:
+            continue
+        F = (x[cell] + u[cell]).T @ corners @ np.linalg.inv(x[cell].T @ corners)
+        stretches.append(1.0 / np.linalg.norm(np.linalg.solve(F, a)))
+    return (min(stretches), max(stretches)) if stretches else None
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--exe", default=os.path.join(ROOT, "build", "release", "app", "isomuscle"))
+    parser.add_argument("--out", default=os.path.join(ROOT, "runs", "dao_mesh_study"))
+    parser.add_argument("--jobs", type=int, default=1)
+    parser.add_argument("--reuse", action="store_true")
+    parser.add_argument("--meshes", nargs="+", default=DEFAULT_MESHES)
+    args = parser.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    paths = {m: scene(m, args.out) for m in args.meshes}
+    dirs = {m: os.path.splitext(p)[0] for m, p in paths.items()}
+    with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+        results = dict(zip(args.meshes, pool.map(
+            lambda m: run(args.exe, paths[m], dirs[m], args.reuse), args.meshes)))
+    iga = [m for m in args.meshes if m.startswith("iga")]
+    finest = max(iga, key=lambda m: results[m]["summary"]["elements"]) if iga else None
+    axis = None
+    if finest:
+        x, _, _ = fields_last_step(dirs[finest])
+        axis = x[axis_points(x)]
+    lines = ["| mesh | elements / DOFs | wall | centre y | mean y of the 4 | min J | root "
+             "fibre stretch |", "|---|---|---|---|---|---|---|"]
+    profile = ["| mesh | " + " | ".join("z = %g" % z for z in HEIGHTS_MM) + " |",
+               "|---" * (len(HEIGHTS_MM) + 1) + "|"]
+    for m in args.meshes:
+        s, p = results[m]["summary"], results[m]["probes"]
+        mean4 = np.mean([p["end_%s_y" % k] for k in "abcd"])
+        root = root_fibre_stretch(dirs[m]) if m.startswith("iga") else None
+        lines.append("| %s | %d / %d | %.0f s | %+.3f | %+.3f | %.3f | %s |" % (
+            m, s["elements"], s["dofs"], s["wall_seconds"]["total"], 1e3 * p["free_end_y"],
+            1e3 * mean4, s["min_jacobian"]["value"],
+            "%.2f-%.2f" % root if root else "-"))
+        if axis is not None:
+            profile.append("| %s | " % m + " | ".join(
+                "%+.3f" % v for v in centreline_uy(dirs[m], m.startswith("iga"), axis)) + " |")
+    report = os.path.join(args.out, "dao_mesh_study.md")
+    with open(report, "w") as f:
+        f.write("# DAO mouth corner, y at 0.2 s (mm)\n\n" + "\n".join(lines) +
+                "\n\n## u_y on the centreline (mm)\n\n" + "\n".join(profile) + "\n")
+    print(report)
+
+
+if __name__ == "__main__":
+    main()
