@@ -297,8 +297,18 @@ void TetrahedraSettings::validate() const {
     if (!std::filesystem::is_regular_file(mesh, ec))
       throw InvalidSetting("mesh", "names no readable file (looked for " + mesh.string() + ")");
     check_range("mesh_unit", mesh_unit, Range::positive());
+    if (!refine.empty())
+      throw InvalidSetting("refine", "and 'mesh' exclude each other: the mesh is given");
   }
   check_range("order", order, Range::closed(1, 2));
+  for (const TetRefinement& r : refine) {
+    check_range("refine.size", r.size, Range::positive());
+    check_range("refine.distance", r.distance, Range::positive());
+    if (!(r.size < element_size))
+      throw InvalidSetting("refine.size", "must be smaller than element_size (" +
+                                              format_number(element_size) + " m), got " +
+                                              format_number(r.size));
+  }
 }
 
 void LoadSettings::validate() const {

@@ -227,12 +227,24 @@ enum class Discretisation { iga, tet };
 const char* to_string(Discretisation d);
 
 // [tetrahedra] (discretisation = "tet"): the IGES boundary meshed by gmsh, or a user's mesh.
+// [[tetrahedra.refine]]: smaller elements next to a face of the solid, e.g. a clamped attachment,
+// where the fibres shorten against a face that cannot widen: a boundary layer that a uniform
+// mesh resolves only at the price of refining the whole muscle (validation/suite/README.md, DAO).
+struct TetRefinement {
+  Face face = Face::v0;   // a parametric face of the solid, as [[boundary]] names it
+  double size = 0.0;      // m, element size on the face (< element_size)
+  double distance = 0.0;  // m, over which the size grows linearly back to element_size
+};
+
 struct TetrahedraSettings {
   double element_size = 0.0;   // m, target edge length when meshing the IGES boundary
   int order = 2;               // 1: 4-node, 2: 10-node (the mixed formulation needs 10 nodes)
   std::filesystem::path mesh;  // a gmsh .msh file instead of meshing (relative to the scene)
   double mesh_unit = 1.0;      // metres per length unit of the .msh file
-  void validate() const;       // element_size > 0 unless a mesh is given, order 1 or 2
+  std::vector<TetRefinement> refine;  // local refinement when meshing (not with a given mesh)
+  // element_size > 0 unless a mesh is given, order 1 or 2, each refinement's 0 < size <
+  // element_size and distance > 0.
+  void validate() const;
 };
 
 struct Scene {

@@ -243,6 +243,20 @@ TetrahedraSettings read_tetrahedra(SceneTable t, const std::filesystem::path& ba
   } else {
     s.element_size = t.number("element_size", required, Range::positive());
   }
+  for (SceneTable r : t.tables("refine")) {
+    if (!s.mesh.empty())
+      r.fail_table("refines the meshing, and [tetrahedra] gives a mesh ('mesh')");
+    TetRefinement refinement;
+    refinement.face = parse_face("face", r.choice("face", required, face_names()));
+    refinement.size = r.number("size", required, Range::positive());
+    if (!(refinement.size < s.element_size))
+      r.fail("size", "must be smaller than [tetrahedra] element_size (" +
+                         format_number(s.element_size) + " m), got " +
+                         format_number(refinement.size));
+    refinement.distance = r.number("distance", required, Range::positive());
+    r.finish();
+    s.refine.push_back(refinement);
+  }
   s.order = t.integer("order", s.order, Range::closed(1, 2));
   t.finish();
   validate_at(t, s);

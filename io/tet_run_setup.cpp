@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "io/setting_check.hpp"
+#include "io/tet_mesh_size.hpp"
 #include "tet/tet_fibres.hpp"
 #include "tet/tet_meshing.hpp"
 #include "tet/tet_surface_loads.hpp"
@@ -166,6 +167,13 @@ TetModel build_tet_model(const Scene& scene, int threads) {
     tet::MeshingOptions mo;
     mo.element_size = t.element_size;
     mo.order = t.order;
+    set_face_refinement(mo, model.solid, t.refine);
+    for (const TetRefinement& r : t.refine) {
+      model.notes.push_back("elements refined near face " + std::string(to_string(r.face)) + ": " +
+                            format_number(r.size) + " m on it, growing to element_size " +
+                            format_number(t.element_size) + " m over " + format_number(r.distance) +
+                            " m");
+    }
     int straightened = 0;
     model.mesh = std::make_unique<tet::TetMesh>(tet::mesh_iges(g.iges, mo, &straightened));
     if (straightened > 0) {

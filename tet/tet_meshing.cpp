@@ -1,6 +1,7 @@
 #include "tet/tet_meshing.hpp"
 
 #include <gmsh.h>
+#include <IGESControl_Controller.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 
@@ -244,6 +245,32 @@ void generate_contained(const std::string& name, int order) {
   }
 }
 
+// MeshingOptions::local_size as gmsh's size callback while it lives: gmsh keeps the callback in
+// its global context past gmsh::finalize, where it would outlive the options it refers to.
+class LocalSizeCallback {
+ public:
+  explicit LocalSizeCallback(const MeshingOptions& options) : active_(bool(options.local_size)) {
+    if (!active_)
+      return;
+    gmsh::model::mesh::setSizeCallback([&options](int, int, double x, double y, double z) {
+      return std::min(options.element_size, options.local_size(Eigen::Vector3d(x, y, z)));
+    });
+  }
+  ~LocalSizeCallback() {
+    if (!active_)
+      return;
+    try {
+      gmsh::model::mesh::removeSizeCallback();
+    } catch (...) {  // nothing sensible to do in a destructor
+    }
+  }
+  LocalSizeCallback(const LocalSizeCallback&) = delete;
+  LocalSizeCallback& operator=(const LocalSizeCallback&) = delete;
+
+ private:
+  bool active_;
+};
+
 }  // namespace
 
 void MeshingOptions::validate() const {
@@ -258,6 +285,10 @@ void MeshingOptions::validate() const {
   if (threads < 1) {
     throw std::invalid_argument("threads must be >= 1");
   }
+  if (local_size && !(finest_size > 0.0 && finest_size <= element_size)) {
+    throw std::invalid_argument("finest_size " + std::to_string(finest_size) +
+                                " of the local size must lie in (0, element_size]");
+  }
 }
 
 // Import, heal and sew the faces, make a volume, mesh it (TOOLING.md, gmsh 4.8).
@@ -271,6 +302,10 @@ TetMesh mesh_iges(const std::filesystem::path& file, const MeshingOptions& optio
   GmshSession session;
   try {
     gmsh::model::add("isomuscle");
+    // gmsh sets the unit through OCCT's IGES/STEP static parameters, which exist only once an
+    // IGES controller is initialised: as the process's first OCCT work (no IGES read before it)
+    // the option failed with "Could not set OpenCASCADE target unit 'M'".
+    IGESControl_Controller::Init();
     gmsh::option::setString("Geometry.OCCTargetUnit", "M");
     gmsh::vectorpair imported;
     gmsh::model::occ::importShapes(name, imported, true, "iges");
@@ -286,8 +321,10 @@ TetMesh mesh_iges(const std::filesystem::path& file, const MeshingOptions& optio
     }
     gmsh::model::occ::synchronize();
     gmsh::option::setNumber("Mesh.MeshSizeMax", options.element_size);
-    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.1 * options.element_size);
+    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.1 * (options.local_size ? options.finest_size
+                                                                          : options.element_size));
     gmsh::option::setNumber("General.NumThreads", options.threads);
+    const LocalSizeCallback local_size(options);
     generate_contained(name, options.order);
     TetMesh mesh = extract_mesh(name, 1.0);
     const int repaired = straighten_folded_elements(mesh);

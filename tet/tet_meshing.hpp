@@ -4,7 +4,10 @@
 // holds a process-wide lock and initialises/finalises gmsh around its work (GmshSession), silences
 // its messages, and turns its errors (thrown as std::string) into std::runtime_error naming the
 // file.
+#include <Eigen/Core>
+
 #include <filesystem>
+#include <functional>
 
 #include "tet/tet_mesh.hpp"
 
@@ -14,6 +17,11 @@ struct MeshingOptions {
   double element_size = 0.0;  // target edge length, m (> 0)
   int order = 1;              // 1: 4-node, 2: 10-node (high-order nodes on the curved boundary)
   int threads = 1;            // gmsh meshing threads
+  // Local refinement: the target edge length (m) at a point (m) where it is to be smaller than
+  // element_size (larger values are cut to element_size); empty: element_size everywhere. gmsh
+  // calls it from its meshing threads, so it must not change shared state.
+  std::function<double(const Eigen::Vector3d&)> local_size;
+  double finest_size = 0.0;  // the smallest value local_size returns, m (gmsh's lower bound)
   // Throws std::invalid_argument naming the option.
   void validate() const;
 };

@@ -542,6 +542,62 @@ TEST_F(SceneLoader, ProgrammaticScenesValidateWithQualifiedKeys) {
   }
 }
 
+// [tetrahedra] with local refinement next to a face ([[tetrahedra.refine]]): values, and the
+// errors a user meets, each at its line.
+TEST_F(SceneLoader, TetrahedraAndTheirLocalRefinement) {
+  const std::string head = "discretisation = \"tet\"\n[tetrahedra]\nelement_size = 0.001\n";
+  const std::string refine =
+      "[[tetrahedra.refine]]\nface = \"v0\"\nsize = 0.0003\n"
+      "distance = 0.002\n";
+  const Scene s = parse(head + refine + minimal());
+  EXPECT_EQ(s.discretisation, Discretisation::tet);
+  EXPECT_EQ(s.tetrahedra.element_size, 0.001);
+  ASSERT_EQ(s.tetrahedra.refine.size(), 1u);
+  EXPECT_EQ(s.tetrahedra.refine[0].face, Face::v0);
+  EXPECT_EQ(s.tetrahedra.refine[0].size, 0.0003);
+  EXPECT_EQ(s.tetrahedra.refine[0].distance, 0.002);
+  EXPECT_TRUE(parse(head + minimal()).tetrahedra.refine.empty());
+
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string text = head + refine + minimal();
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  const std::string coarse = with("size = 0.0003", "size = 0.0015");
+  const SceneError c = error(coarse);
+  EXPECT_EQ(c.line(), line_containing(coarse, "size = 0.0015"));
+  EXPECT_EQ(c.message(),
+            "'size' in [[tetrahedra.refine]] #1 must be smaller than [tetrahedra] element_size "
+            "(0.001 m), got 0.0015");
+  const std::string face = with("face = \"v0\"", "face = \"v9\"");
+  EXPECT_EQ(error(face).message(),
+            "'face' in [[tetrahedra.refine]] #1 must be one of u0, u1, v0, v1, w0, w1 (got "
+            "\"v9\"); did you mean \"v0\"?");
+  const std::string typo = with("distance", "distanse");
+  EXPECT_EQ(
+      error(typo).message(),
+      "missing required key 'distance' in [[tetrahedra.refine]] #1; found 'distanse' on line " +
+          std::to_string(line_containing(typo, "distanse")) + ": a misspelling?");
+  const std::string negative = with("distance = 0.002", "distance = -0.002");
+  EXPECT_EQ(error(negative).line(), line_containing(negative, "distance = -0.002"));
+  // A given mesh is not meshed, so it cannot be refined.
+  const std::string given = with("element_size = 0.001", "mesh = \"shape.igs\"");
+  const SceneError g = error(given);
+  EXPECT_EQ(g.line(), line_containing(given, "[[tetrahedra.refine]]"));
+  EXPECT_EQ(g.message(),
+            "[[tetrahedra.refine]] #1 refines the meshing, and [tetrahedra] gives a mesh ('mesh')");
+
+  // Programmatic scenes are checked by validate() with the qualified key.
+  Scene programmatic = s;
+  programmatic.tetrahedra.refine[0].size = 0.002;
+  try {
+    programmatic.validate();
+    ADD_FAILURE() << "no throw";
+  } catch (const InvalidSetting& e) {
+    EXPECT_EQ(e.key(), "tetrahedra.refine.size");
+  }
+}
+
 TEST_F(SceneLoader, SyntaxErrorsInAFile) {
   write_text(dir_ / "bad.toml", "[time]\nend = 1\ndt = \n");
   try {
