@@ -14,8 +14,13 @@ and writes OUT/dao_mesh_study.md with three tables:
 * the fibre stretch in the first 2 mm next to the clamped jaw face, IGA runs only (hexahedra of fields.h5,
   F of the trilinear tessellation cell, lambda = 1 / |F^-1 a| with a the deformed fibre).
 
+* u_y across the width at four heights (the mean over the tessellation or mesh points within
+  0.5 mm of the height, in 2 mm bins of x): the fan's cupping, and whether it wrinkles.
+
 Usage: /usr/bin/python3 validation/suite/dao_mesh_study.py [--out OUT] [--jobs N] [--reuse]
-       [--meshes iga:3,15,7 tet:0.00075 ...]
+       [--meshes iga:3,15,7 iga:3,15,3:1,0,2 tet:0.00075 tet:0.00075:v0,0.0003,0.002 ...]
+A mesh is iga:KNOT_INSERTION[:DEGREE_ELEVATION] or tet:ELEMENT_SIZE[:FACE,SIZE,DISTANCE] (one
+[[tetrahedra.refine]]); the scene's own values where a part is left out.
 The default meshes are those of the README table (about 3 h on one core; --jobs 2 halves it).
 """
 import argparse
@@ -33,6 +38,8 @@ END_CENTRE = np.array([0.004, 0.002, 0.034])
 BEFORE_END = np.array([0.0035, 0.004, 0.029])  # the centreline's last two section centres:
 HALF_WIDTH, HALF_THICKNESS = 0.0015, 0.001  # geometry/shapes.cpp, depressor_anguli_oris
 HEIGHTS_MM = [2, 3, 5, 8, 12, 17, 22, 27, 31, 34]
+WIDTH_HEIGHTS_MM = [3, 10, 15, 22]
+WIDTH_BINS_MM = np.arange(-14.0, 16.0, 2.0)
 
 
 def end_face_points():
@@ -46,8 +53,9 @@ def end_face_points():
 
 
 def scene(mesh, folder):
-    """Scene copy for 'iga:i,j,k' (knot insertion) or 'tet:h' (element size, m); returns its path."""
-    kind, value = mesh.split(":")
+    """Scene copy for 'iga:i,j,k[:a,b,c]' (knot insertion, degree elevation) or
+    'tet:h[:face,size,distance]' (element size, m; one local refinement); returns its path."""
+    kind, value, *extra = mesh.split(":")
     base = os.path.join(ROOT, "examples", "dao", "contract.toml" if kind == "iga" else
                         "contract-tet.toml")
     text = open(base).read().replace("../geometry/dao.igs",
@@ -55,16 +63,24 @@ def scene(mesh, folder):
     if kind == "iga":
         text, n = re.subn(r"knot_insertion = \[[^\]]*\]", "knot_insertion = [%s]" %
                           value.replace(",", ", "), text)
+        if extra:
+            text, m = re.subn(r"degree_elevation = \[[^\]]*\]", "degree_elevation = [%s]" %
+                              extra[0].replace(",", ", "), text)
+            n = min(n, m)
     else:
         text, n = re.subn(r"element_size = [0-9.e-]+", "element_size = %s" % value, text)
-    if n != 1:
+        if extra:
+            face, size, distance = extra[0].split(",")
+            text += ('\n[[tetrahedra.refine]]\nface = "%s"\nsize = %s\ndistance = %s\n' %
+                     (face, size, distance))
+    if n != 1 or len(extra) > 1:
         raise SystemExit("dao_mesh_study: cannot set the mesh '%s' in %s" % (mesh, base))
     text = re.sub(r"times = \[[^\]]*\]", "times = [0.2]", text)
     for name, p in end_face_points().items():
         for c in "xyz":
             text += ('\n[[probe]]\nname = "end_%s_%s"\nkind = "point_displacement"\n'
                      'point = [%.17g, %.17g, %.17g]\ncomponent = "%s"\n' % (name, c, *p, c))
-    path = os.path.join(folder, "dao_%s_%s.toml" % (kind, value.replace(",", "_")))
+    path = os.path.join(folder, "dao_%s.toml" % re.sub(r"[:,]", "_", mesh))
     with open(path, "w") as f:
         f.write(text)
     return path
@@ -91,6 +107,18 @@ def centreline_uy(run_dir, is_iga, axis):
         near = np.linalg.norm(x - p, axis=1) < 0.4e-3
         row.append(1000.0 * u[near, 1].mean() if near.any() else float("nan"))
     return np.array(row)
+
+
+def width_uy(run_dir, height_mm):
+    """Mean u_y (mm) of the points within 0.5 mm of the reference height, per 2 mm bin of x."""
+    x, u, _ = fields_last_step(run_dir)
+    x, u = 1e3 * x, 1e3 * u
+    level = np.abs(x[:, 2] - height_mm) < 0.5
+    row = []
+    for a, b in zip(WIDTH_BINS_MM[:-1], WIDTH_BINS_MM[1:]):
+        inside = level & (x[:, 0] >= a) & (x[:, 0] < b)
+        row.append("%+.2f" % u[inside, 1].mean() if inside.any() else ".")
+    return row
 
 
 def root_fibre_stretch(run_dir):
@@ -147,10 +175,17 @@ def main():
         if axis is not None:
             profile.append("| %s | " % m + " | ".join(
                 "%+.3f" % v for v in centreline_uy(dirs[m], m.startswith("iga"), axis)) + " |")
+    width = []
+    for h in WIDTH_HEIGHTS_MM:
+        width += ["", "z = %g mm:" % h, "",
+                  "| mesh | " + " | ".join("%+g..%+g" % (a, a + 2) for a in WIDTH_BINS_MM[:-1]) +
+                  " |", "|---" * len(WIDTH_BINS_MM) + "|"]
+        width += ["| %s | " % m + " | ".join(width_uy(dirs[m], h)) + " |" for m in args.meshes]
     report = os.path.join(args.out, "dao_mesh_study.md")
     with open(report, "w") as f:
         f.write("# DAO mouth corner, y at 0.2 s (mm)\n\n" + "\n".join(lines) +
-                "\n\n## u_y on the centreline (mm)\n\n" + "\n".join(profile) + "\n")
+                "\n\n## u_y on the centreline (mm)\n\n" + "\n".join(profile) +
+                "\n\n## u_y across the width (mm; x bins in mm)\n" + "\n".join(width) + "\n")
     print(report)
 
 
