@@ -302,13 +302,21 @@ void TetrahedraSettings::validate() const {
   }
   check_range("order", order, Range::closed(1, 2));
   for (const TetRefinement& r : refine) {
-    check_range("refine.size", r.size, Range::positive());
-    check_range("refine.distance", r.distance, Range::positive());
-    if (!(r.size < element_size))
-      throw InvalidSetting("refine.size", "must be smaller than element_size (" +
-                                              format_number(element_size) + " m), got " +
-                                              format_number(r.size));
+    try {
+      r.validate(element_size);
+    } catch (const InvalidSetting& e) {
+      throw InvalidSetting("refine." + e.key(), e.detail());
+    }
   }
+}
+
+void TetRefinement::validate(double element_size) const {
+  check_range("size", size, Range::positive());
+  check_range("distance", distance, Range::positive());
+  if (!(size < element_size))
+    throw InvalidSetting("size", "must be smaller than [tetrahedra] element_size (" +
+                                     format_number(element_size) + " m), got " +
+                                     format_number(size));
 }
 
 void LoadSettings::validate() const {

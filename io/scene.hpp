@@ -234,6 +234,8 @@ struct TetRefinement {
   Face face = Face::v0;   // a parametric face of the solid, as [[boundary]] names it
   double size = 0.0;      // m, element size on the face (< element_size)
   double distance = 0.0;  // m, over which the size grows linearly back to element_size
+  // 0 < size < element_size of its [tetrahedra], distance > 0; InvalidSetting("size" / "distance").
+  void validate(double element_size) const;
 };
 
 struct TetrahedraSettings {

@@ -249,12 +249,13 @@ TetrahedraSettings read_tetrahedra(SceneTable t, const std::filesystem::path& ba
     TetRefinement refinement;
     refinement.face = parse_face("face", r.choice("face", required, face_names()));
     refinement.size = r.number("size", required, Range::positive());
-    if (!(refinement.size < s.element_size))
-      r.fail("size", "must be smaller than [tetrahedra] element_size (" +
-                         format_number(s.element_size) + " m), got " +
-                         format_number(refinement.size));
     refinement.distance = r.number("distance", required, Range::positive());
     r.finish();
+    try {
+      refinement.validate(s.element_size);
+    } catch (const InvalidSetting& e) {
+      r.fail(e);
+    }
     s.refine.push_back(refinement);
   }
   s.order = t.integer("order", s.order, Range::closed(1, 2));
