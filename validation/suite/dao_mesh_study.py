@@ -14,6 +14,7 @@ and writes OUT/dao_mesh_study.md with three tables:
 * the fibre stretch in the first 2 mm next to the clamped jaw face, IGA runs only (hexahedra of fields.h5,
   F of the trilinear tessellation cell, lambda = 1 / |F^-1 a| with a the deformed fibre).
 
+* the end's y against time (probes.csv, interpolated; "." past the last converged step);
 * u_y across the width at four heights (the mean over the tessellation or mesh points within
   0.5 mm of the height, in 2 mm bins of x): the fan's cupping, and whether it wrinkles.
 
@@ -38,6 +39,7 @@ END_CENTRE = np.array([0.004, 0.002, 0.034])
 BEFORE_END = np.array([0.0035, 0.004, 0.029])  # the centreline's last two section centres:
 HALF_WIDTH, HALF_THICKNESS = 0.0015, 0.001  # geometry/shapes.cpp, depressor_anguli_oris
 HEIGHTS_MM = [2, 3, 5, 8, 12, 17, 22, 27, 31, 34]
+HISTORY_TIMES = [0.02, 0.05, 0.07, 0.09, 0.0975, 0.125, 0.15, 0.175, 0.2]
 WIDTH_HEIGHTS_MM = [3, 10, 15, 22]
 WIDTH_BINS_MM = np.arange(-14.0, 16.0, 2.0)
 
@@ -109,6 +111,15 @@ def centreline_uy(run_dir, is_iga, axis):
     return np.array(row)
 
 
+def y_history(run_dir):
+    """The end centre's y (mm) at HISTORY_TIMES from probes.csv; "." past the run's last step."""
+    import csv
+    rows = list(csv.DictReader(open(os.path.join(run_dir, "probes.csv"))))
+    t = np.array([float(r["time"]) for r in rows])
+    y = 1e3 * np.array([float(r["free_end_y"]) for r in rows])
+    return ["%+.3f" % np.interp(h, t, y) if h <= t[-1] + 1e-12 else "." for h in HISTORY_TIMES]
+
+
 def width_uy(run_dir, height_mm):
     """Mean u_y (mm) of the points within 0.5 mm of the reference height, per 2 mm bin of x."""
     x, u, _ = fields_last_step(run_dir)
@@ -175,6 +186,9 @@ def main():
         if axis is not None:
             profile.append("| %s | " % m + " | ".join(
                 "%+.3f" % v for v in centreline_uy(dirs[m], m.startswith("iga"), axis)) + " |")
+    history = ["| mesh | " + " | ".join("t = %g s" % t for t in HISTORY_TIMES) + " |",
+               "|---" * (len(HISTORY_TIMES) + 1) + "|"]
+    history += ["| %s | " % m + " | ".join(y_history(dirs[m])) + " |" for m in args.meshes]
     width = []
     for h in WIDTH_HEIGHTS_MM:
         width += ["", "z = %g mm:" % h, "",
@@ -185,6 +199,7 @@ def main():
     with open(report, "w") as f:
         f.write("# DAO mouth corner, y at 0.2 s (mm)\n\n" + "\n".join(lines) +
                 "\n\n## u_y on the centreline (mm)\n\n" + "\n".join(profile) +
+                "\n\n## The end's y against time (mm)\n\n" + "\n".join(history) +
                 "\n\n## u_y across the width (mm; x bins in mm)\n" + "\n".join(width) + "\n")
     print(report)
 
