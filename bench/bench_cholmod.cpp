@@ -4,6 +4,11 @@
 // through the raw C API (solver::CholmodCholesky, with a choice of ordering) and through
 // Eigen::CholmodSupernodalLLT (same CHOLMOD routines, CHOLMOD's default ordering).
 //
+// BM_LuFallback: the same matrices shifted to be indefinite (K - 0.02 mean(diag K) I), through
+// solver::LinearSolver: the failed Cholesky and UMFPACK's LU that replaces it (symmetric strategy
+// in CHOLMOD's order, umfpack_lu.hpp), per Newton iteration that meets an indefinite tangent;
+// counters nnz_LU against nnz_L.
+//
 // Arguments: {elements per side, degree, ordering (0 default, 1 AMD, 2 METIS, 3 NESDIS)}.
 // Counters: unknowns, nnz_L (nonzeros of the factor), GFlop (of one numeric factorisation) and
 // GFlop/s (against wall time).
@@ -14,6 +19,7 @@
 #include <utility>
 
 #include "solver/cholmod_cholesky.hpp"
+#include "solver/linear_solver.hpp"
 #include "tests/solver/elasticity_fixture.hpp"
 
 namespace {
@@ -112,6 +118,30 @@ void BM_EigenNumeric(benchmark::State& state) {
   state.counters["unknowns"] = static_cast<double>(k.rows());
 }
 
+// Cholesky attempt and LU fallback of an indefinite matrix: once per Newton iteration past a limit
+// point or with a locally indefinite material tangent.
+void BM_LuFallback(benchmark::State& state) {
+  SparseMatrix k = stiffness(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+  const double shift = 0.02 * k.diagonal().mean();
+  for (int j = 0; j < k.cols(); ++j) {
+    k.coeffRef(j, j) -= shift;
+  }
+  isomuscle::solver::LinearSolverSettings settings;
+  settings.ordering = ordering(state.range(2));
+  isomuscle::solver::LinearSolver solver(settings);
+  for (auto _ : state) {
+    const isomuscle::solver::FactorizationReport report = solver.factorize(k);
+    if (!report.ok || !report.fell_back) {
+      state.SkipWithError("no LU fallback");
+      break;
+    }
+  }
+  state.counters["unknowns"] = static_cast<double>(k.rows());
+  state.counters["nnz_L"] = solver.cholesky().factor_nonzeros();
+  state.counters["nnz_LU"] = solver.lu().factor_nonzeros();
+  state.SetLabel(solver.lu().symmetric_strategy() ? "symmetric" : "unsymmetric");
+}
+
 // Degree 1: 3.3k, 11.5k, 25k, 49k unknowns; degree 2 (IGA): 4.8k, 11.5k, 22k, 39k unknowns.
 void sizes(benchmark::internal::Benchmark* b) {
   for (int n : {10, 15, 20, 25}) {
@@ -143,6 +173,11 @@ BENCHMARK(BM_RawSymbolic)
 BENCHMARK(BM_RawNumeric)
     ->Apply(sizes)
     ->Apply(orderings)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+BENCHMARK(BM_LuFallback)
+    ->Apply(sizes)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();

@@ -239,5 +239,13 @@ double CholmodCholesky::factor_flops() const {
 std::string CholmodCholesky::ordering_used() const {
   return impl_->factor == nullptr ? "none" : ordering_name(impl_->ordering);
 }
+std::vector<int> CholmodCholesky::permutation() const {
+  const cholmod_factor* factor = impl_->factor;
+  if (factor == nullptr || factor->Perm == nullptr) {
+    return {};
+  }
+  const auto* perm = static_cast<const int*>(factor->Perm);
+  return std::vector<int>(perm, perm + factor->n);
+}
 
 }  // namespace isomuscle::solver

@@ -11,6 +11,7 @@
 // workspace (cholmod_solve2); bench/bench_cholmod.cpp measures both.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "solver/nonlinear_problem.hpp"
 
@@ -59,6 +60,9 @@ class CholmodCholesky {
   double factor_flops() const;
   // The ordering the last analysis used: "AMD", "METIS", "NESDIS", ...
   std::string ordering_used() const;
+  // The fill-reducing permutation P of the last analysis (row k of P A P^T is row
+  // permutation()[k] of A); empty before the first analysis. The LU fallback reuses it.
+  std::vector<int> permutation() const;
 
  private:
   struct Impl;

@@ -162,10 +162,21 @@ struct LinearSolver::Impl {
     const bool expand = settings.storage == MatrixStorage::Upper;
     if (!lu_analysed) {
       ScopedTimer timer(stats.time.symbolic);
+      LuAnalysisOptions options;
       if (expand) {
+        // UMFPACK's analysis reads the values (expanded first: given an unfilled copy it saw no
+        // diagonal and chose its unsymmetric strategy), and an expanded matrix is symmetric, so
+        // it takes the symmetric strategy and, where Cholesky was analysed, CHOLMOD's
+        // fill-reducing order of the same pattern (umfpack_lu.hpp; on the DAO's tangent 35 %
+        // fewer flops than UMFPACK's AMD).
         build_full_pattern(a);
+        expand_values(a);
+        options.symmetric = true;
+        if (cholesky.analyzed()) {
+          options.column_order = cholesky.permutation();
+        }
       }
-      lu.analyze(expand ? full : a);
+      lu.analyze(expand ? full : a, options);
       lu_analysed = true;
       ++stats.lu_symbolic_analyses;
     }
@@ -291,6 +302,9 @@ const LinearSolverSettings& LinearSolver::settings() const {
 }
 const CholmodCholesky& LinearSolver::cholesky() const {
   return impl_->cholesky;
+}
+const UmfpackLu& LinearSolver::lu() const {
+  return impl_->lu;
 }
 
 }  // namespace isomuscle::solver

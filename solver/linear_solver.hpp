@@ -11,6 +11,7 @@
 #include "solver/cholmod_cholesky.hpp"
 #include "solver/matrix_storage.hpp"
 #include "solver/nonlinear_problem.hpp"
+#include "solver/umfpack_lu.hpp"
 
 namespace isomuscle::solver {
 
@@ -89,6 +90,8 @@ class LinearSolver {
   const LinearSolverSettings& settings() const;
   // CHOLMOD's view of the analysed pattern: nonzeros of L, factorisation flops, ordering used.
   const CholmodCholesky& cholesky() const;
+  // UMFPACK's view of its last analysis and factorisation: strategy, nonzeros of L and U.
+  const UmfpackLu& lu() const;
 
  private:
   struct Impl;

@@ -61,6 +61,8 @@ struct UmfpackLu::Impl {
   void* numeric = nullptr;
   Index n = -1;
   double rcond = 0.0;
+  bool symmetric_strategy = false;
+  double factor_nonzeros = 0.0;
   // The factorised matrix, for iterative refinement in solve: its values, and its pattern in
   // 64-bit indices.
   SparseMatrix matrix;
@@ -84,22 +86,49 @@ UmfpackLu::~UmfpackLu() = default;
 UmfpackLu::UmfpackLu(UmfpackLu&&) noexcept = default;
 UmfpackLu& UmfpackLu::operator=(UmfpackLu&&) noexcept = default;
 
-// Symbolic analysis: column pre-ordering Q and frontal matrix structure (umfpack_dl_symbolic).
-void UmfpackLu::analyze(const SparseMatrix& a) {
+// Symbolic analysis: column pre-ordering Q and frontal matrix structure (umfpack_dl_symbolic, or
+// umfpack_dl_qsymbolic with a given order).
+void UmfpackLu::analyze(const SparseMatrix& a, const LuAnalysisOptions& options) {
   check_matrix(a, "analyze");
   Impl& s = *impl_;
   umfpack_dl_free_numeric(&s.numeric);
   umfpack_dl_free_symbolic(&s.symbolic);
   const Index n = a.rows();
+  std::vector<Index> order;
+  if (!options.column_order.empty()) {
+    std::vector<bool> seen(static_cast<std::size_t>(n), false);
+    bool permutation = options.column_order.size() == static_cast<std::size_t>(n);
+    for (std::size_t k = 0; permutation && k < options.column_order.size(); ++k) {
+      const int j = options.column_order[k];
+      permutation = j >= 0 && j < n && !seen[static_cast<std::size_t>(j)];
+      if (permutation) {
+        seen[static_cast<std::size_t>(j)] = true;
+      }
+    }
+    if (!permutation) {
+      throw std::invalid_argument("UmfpackLu::analyze: the column order (" +
+                                  std::to_string(options.column_order.size()) +
+                                  " entries) is not a permutation of 0.." + std::to_string(n - 1));
+    }
+    order.assign(options.column_order.begin(), options.column_order.end());
+  }
   copy_pattern(a, s.columns, s.rows);
-  const int status =
-      static_cast<int>(umfpack_dl_symbolic(n, n, s.columns.data(), s.rows.data(), a.valuePtr(),
-                                           &s.symbolic, s.control.data(), s.info.data()));
+  umfpack_dl_defaults(s.control.data());
+  if (options.symmetric) {
+    s.control[UMFPACK_STRATEGY] = UMFPACK_STRATEGY_SYMMETRIC;
+  }
+  const int status = static_cast<int>(
+      order.empty()
+          ? umfpack_dl_symbolic(n, n, s.columns.data(), s.rows.data(), a.valuePtr(), &s.symbolic,
+                                s.control.data(), s.info.data())
+          : umfpack_dl_qsymbolic(n, n, s.columns.data(), s.rows.data(), a.valuePtr(), order.data(),
+                                 &s.symbolic, s.control.data(), s.info.data()));
   if (status != UMFPACK_OK) {
     umfpack_dl_free_symbolic(&s.symbolic);
     throw std::runtime_error("UMFPACK symbolic analysis of a " + std::to_string(n) + " x " +
                              std::to_string(n) + " matrix failed: " + status_text(status));
   }
+  s.symmetric_strategy = s.info[UMFPACK_STRATEGY_USED] == UMFPACK_STRATEGY_SYMMETRIC;
   s.n = n;
 }
 
@@ -137,6 +166,7 @@ LuStatus UmfpackLu::factorize(const SparseMatrix& a) {
     return result;
   }
   s.matrix = a;
+  s.factor_nonzeros = s.info[UMFPACK_LNZ] + s.info[UMFPACK_UNZ];
   result.ok = true;
   return result;
 }
@@ -171,6 +201,12 @@ bool UmfpackLu::factorized() const {
 }
 double UmfpackLu::rcond() const {
   return impl_->rcond;
+}
+bool UmfpackLu::symmetric_strategy() const {
+  return impl_->symmetric_strategy;
+}
+double UmfpackLu::factor_nonzeros() const {
+  return impl_->factor_nonzeros;
 }
 
 }  // namespace isomuscle::solver

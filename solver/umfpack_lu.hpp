@@ -6,6 +6,7 @@
 // symmetric.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "solver/nonlinear_problem.hpp"
 
@@ -17,6 +18,20 @@ struct LuStatus {
   std::string message;
 };
 
+// How the symbolic analysis orders the matrix.
+struct LuAnalysisOptions {
+  // The matrix is symmetric (both triangles stored): use UMFPACK's symmetric strategy (an ordering
+  // of A + A^T, diagonal pivots preferred), which keeps the fill near a Cholesky factor's. Left to
+  // itself UMFPACK picks its strategy from the values it is given at analysis time; given a
+  // pattern whose diagonal it cannot see as nonzero it chooses the unsymmetric strategy, whose
+  // fronts grew to 12 times the flops on the DAO's tangent (and did not finish in 16 minutes at
+  // 27509 unknowns, where the symmetric one takes 8 s).
+  bool symmetric = false;
+  // A fill-reducing order to start from instead of UMFPACK's own AMD/COLAMD (a permutation of
+  // 0..n-1, e.g. CHOLMOD's for the same pattern); empty: UMFPACK's.
+  std::vector<int> column_order;
+};
+
 class UmfpackLu {
  public:
   UmfpackLu();
@@ -26,9 +41,11 @@ class UmfpackLu {
   UmfpackLu(const UmfpackLu&) = delete;
   UmfpackLu& operator=(const UmfpackLu&) = delete;
 
-  // Symbolic analysis of a's pattern (compressed, square, sorted rows). Throws std::runtime_error
-  // naming the UMFPACK status when it fails.
-  void analyze(const SparseMatrix& a);
+  // Symbolic analysis of a's pattern (compressed, square, sorted rows; UMFPACK also reads the
+  // values, so pass the matrix to be factorised). Throws std::invalid_argument when
+  // options.column_order is not a permutation of 0..n-1, std::runtime_error naming the UMFPACK
+  // status when the analysis fails.
+  void analyze(const SparseMatrix& a, const LuAnalysisOptions& options = {});
   // Numeric factorisation of a, which must have the analysed pattern (the caller checks).
   LuStatus factorize(const SparseMatrix& a);
   // x = A^{-1} b with the last successful factorisation (and up to two steps of iterative
@@ -40,6 +57,10 @@ class UmfpackLu {
   bool factorized() const;
   // UMFPACK's reciprocal condition estimate min|U_ii| / max|U_ii| of the last factorisation.
   double rcond() const;
+  // Whether the last analysis chose the symmetric strategy.
+  bool symmetric_strategy() const;
+  // Nonzeros of L plus U of the last successful factorisation (0 before one).
+  double factor_nonzeros() const;
 
  private:
   struct Impl;

@@ -10,6 +10,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "solver/blas_threads.hpp"
 #include "solver/setting_error.hpp"
@@ -158,6 +159,58 @@ TEST(LinearSolver, IndefiniteMatrixFallsBackToLuAndStillSolves) {
   EXPECT_EQ(stats.lu_symbolic_analyses, 1);
   EXPECT_EQ(stats.symbolic_analyses, 1);
   EXPECT_EQ(stats.failures, 0);
+}
+
+// The LU fallback of an upper-stored symmetric matrix factorises it with UMFPACK's symmetric
+// strategy in CHOLMOD's order, so its L + U hold about twice the Cholesky factor's nonzeros. Before
+// 2026-12-04 UMFPACK analysed an unfilled expansion, saw no diagonal, took its unsymmetric
+// strategy, and on the DAO's tangent (27509 unknowns) had not finished after 16 minutes.
+TEST(LinearSolver, LuFallbackKeepsTheFillOfTheSymmetricPattern) {
+  const testing::ElasticitySystem system = testing::make_elasticity({8, 2});
+  SparseMatrix k = system.stiffness;
+  const double sigma = 0.02 * k.diagonal().mean();
+  for (int j = 0; j < k.cols(); ++j) {
+    k.coeffRef(j, j) -= sigma;
+  }
+  LinearSolver solver;
+  const FactorizationReport report = solver.factorize(k);
+  ASSERT_TRUE(report.ok) << report.message;
+  ASSERT_TRUE(report.fell_back);
+  EXPECT_TRUE(solver.lu().symmetric_strategy());
+  const double cholesky_nonzeros = solver.cholesky().factor_nonzeros();
+  ASSERT_GT(cholesky_nonzeros, 0.0);
+  // L + U of a symmetric pivot sequence in the same order: 2 nnz(L) - n (diagonal once).
+  EXPECT_LE(solver.lu().factor_nonzeros(), 2.0 * cholesky_nonzeros) << cholesky_nonzeros;
+  EXPECT_GE(solver.lu().factor_nonzeros(), 2.0 * cholesky_nonzeros - 1.5 * k.rows());
+  const Eigen::VectorXd b = random_vector(k.rows(), 17);
+  Eigen::VectorXd x;
+  solver.solve(b, x);
+  EXPECT_LE(relative_residual(k, MatrixStorage::Upper, x, b), 1e-10);
+}
+
+TEST(UmfpackLu, AColumnOrderThatIsNotAPermutationIsRefused) {
+  SparseMatrix a(3, 3);
+  for (int i = 0; i < 3; ++i) {
+    a.insert(i, i) = 1.0 + i;
+  }
+  a.makeCompressed();
+  UmfpackLu lu;
+  for (const std::vector<int>& order :
+       {std::vector<int>{0, 1}, std::vector<int>{0, 1, 1}, std::vector<int>{0, 1, 3}}) {
+    try {
+      lu.analyze(a, LuAnalysisOptions{false, order});
+      ADD_FAILURE() << "order of size " << order.size() << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("not a permutation of 0..2"), std::string::npos)
+          << e.what();
+    }
+  }
+  lu.analyze(a, LuAnalysisOptions{true, {2, 0, 1}});
+  ASSERT_TRUE(lu.factorize(a).ok);
+  Eigen::VectorXd x;
+  lu.solve(Eigen::Vector3d(1.0, 2.0, 3.0), x);
+  EXPECT_NEAR(x[2], 1.0, 1e-15);
+  EXPECT_DOUBLE_EQ(lu.factor_nonzeros(), 6.0);  // L and U each hold the diagonal
 }
 
 TEST(LinearSolver, WithoutFallbackAnIndefiniteMatrixIsAFailure) {
