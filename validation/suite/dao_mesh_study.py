@@ -20,9 +20,14 @@ and writes OUT/dao_mesh_study.md with three tables:
 
 Usage: /usr/bin/python3 validation/suite/dao_mesh_study.py [--out OUT] [--jobs N] [--reuse]
        [--meshes iga:3,15,7 iga:3,15,3:1,0,2 tet:0.00075 tet:0.00075:v0,0.0003,0.002 ...]
+       [--jaw clamped|sliding]
 A mesh is iga:KNOT_INSERTION[:DEGREE_ELEVATION] or tet:ELEMENT_SIZE[:FACE,SIZE,DISTANCE] (one
 [[tetrahedra.refine]]); the scene's own values where a part is left out.
 The default meshes are those of the README table (about 3 h on one core; --jobs 2 halves it).
+--jaw sliding replaces the clamped jaw face by one held only along z (free to move in x and y, so
+free to widen as the fibres next to it shorten) and two point constraints against the rigid
+motions left: x and y at the face's centre, y at the end of its major axis (the stand-in's section
+frame, below); the scenes and runs are named dao_sliding_*.
 """
 import argparse
 import concurrent.futures
@@ -38,6 +43,28 @@ DEFAULT_MESHES = ["iga:3,1,1", "iga:3,3,3", "iga:3,7,7", "iga:3,7,15", "iga:3,15
 END_CENTRE = np.array([0.004, 0.002, 0.034])
 BEFORE_END = np.array([0.0035, 0.004, 0.029])  # the centreline's last two section centres:
 HALF_WIDTH, HALF_THICKNESS = 0.0015, 0.001  # geometry/shapes.cpp, depressor_anguli_oris
+JAW_CHORD = np.array([0.0010, 0.0025, 0.0070])  # first section's chord, and its half width
+JAW_HALF_WIDTH = 0.0150
+CLAMPED_JAW = '[[boundary]]\nface = "v0"                       # the origin on the jaw\ntype = "fixed"\n'
+# The point constraints catch the control points there (IGA: the collapsed axis, the section's
+# interpolated corner) or the mesh nodes within 0.4 mm (tetrahedra: gmsh need not put one there).
+SLIDING_JAW = """[[boundary]]
+face = "v0"                       # the jaw face, held along z only
+type = "fixed"
+components = ["z"]
+
+[[boundary]]
+at = [0.0, 0.0, 0.0]
+type = "fixed"
+components = ["x", "y"]
+tolerance = %s
+
+[[boundary]]
+at = [%.17g, %.17g, %.17g]
+type = "fixed"
+components = ["y"]
+tolerance = %s
+"""
 HEIGHTS_MM = [2, 3, 5, 8, 12, 17, 22, 27, 31, 34]
 HISTORY_TIMES = [0.02, 0.05, 0.07, 0.09, 0.0975, 0.125, 0.15, 0.175, 0.2]
 WIDTH_HEIGHTS_MM = [3, 10, 15, 22]
@@ -54,9 +81,17 @@ def end_face_points():
             "c": END_CENTRE + HALF_THICKNESS * e2, "d": END_CENTRE - HALF_THICKNESS * e2}
 
 
-def scene(mesh, folder):
+def jaw_major_axis_end():
+    """The end of the jaw section's major axis, as geometry/shapes.cpp builds the section."""
+    t = JAW_CHORD / np.linalg.norm(JAW_CHORD)
+    e1 = np.array([1.0, 0.0, 0.0]) - t[0] * t
+    return JAW_HALF_WIDTH * e1 / np.linalg.norm(e1)
+
+
+def scene(mesh, folder, jaw="clamped"):
     """Scene copy for 'iga:i,j,k[:a,b,c]' (knot insertion, degree elevation) or
-    'tet:h[:face,size,distance]' (element size, m; one local refinement); returns its path."""
+    'tet:h[:face,size,distance]' (element size, m; one local refinement), with the jaw face
+    clamped (the committed scenes) or sliding (module doc); returns its path."""
     kind, value, *extra = mesh.split(":")
     base = os.path.join(ROOT, "examples", "dao", "contract.toml" if kind == "iga" else
                         "contract-tet.toml")
@@ -77,12 +112,18 @@ def scene(mesh, folder):
                      (face, size, distance))
     if n != 1 or len(extra) > 1:
         raise SystemExit("dao_mesh_study: cannot set the mesh '%s' in %s" % (mesh, base))
+    if jaw == "sliding":
+        if CLAMPED_JAW not in text:
+            raise SystemExit("dao_mesh_study: no clamped jaw face to replace in %s" % base)
+        tolerance = "1e-06" if kind == "iga" else "0.0004"
+        text = text.replace(CLAMPED_JAW, SLIDING_JAW % (tolerance, *jaw_major_axis_end(), tolerance))
     text = re.sub(r"times = \[[^\]]*\]", "times = [0.2]", text)
     for name, p in end_face_points().items():
         for c in "xyz":
             text += ('\n[[probe]]\nname = "end_%s_%s"\nkind = "point_displacement"\n'
                      'point = [%.17g, %.17g, %.17g]\ncomponent = "%s"\n' % (name, c, *p, c))
-    path = os.path.join(folder, "dao_%s.toml" % re.sub(r"[:,]", "_", mesh))
+    path = os.path.join(folder, "dao_%s%s.toml" % ("sliding_" if jaw == "sliding" else "",
+                                                     re.sub(r"[:,]", "_", mesh)))
     with open(path, "w") as f:
         f.write(text)
     return path
@@ -158,9 +199,10 @@ def main():
     parser.add_argument("--jobs", type=int, default=1)
     parser.add_argument("--reuse", action="store_true")
     parser.add_argument("--meshes", nargs="+", default=DEFAULT_MESHES)
+    parser.add_argument("--jaw", choices=["clamped", "sliding"], default="clamped")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
-    paths = {m: scene(m, args.out) for m in args.meshes}
+    paths = {m: scene(m, args.out, args.jaw) for m in args.meshes}
     dirs = {m: os.path.splitext(p)[0] for m, p in paths.items()}
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         results = dict(zip(args.meshes, pool.map(
@@ -171,17 +213,17 @@ def main():
     if finest:
         x, _, _ = fields_last_step(dirs[finest])
         axis = x[axis_points(x)]
-    lines = ["| mesh | elements / DOFs | wall | centre y | mean y of the 4 | min J | root "
-             "fibre stretch |", "|---|---|---|---|---|---|---|"]
+    lines = ["| mesh | elements / DOFs | wall | centre y | mean y of the 4 | centre x, z | min J | "
+             "root fibre stretch |", "|---|---|---|---|---|---|---|---|"]
     profile = ["| mesh | " + " | ".join("z = %g" % z for z in HEIGHTS_MM) + " |",
                "|---" * (len(HEIGHTS_MM) + 1) + "|"]
     for m in args.meshes:
         s, p = results[m]["summary"], results[m]["probes"]
         mean4 = np.mean([p["end_%s_y" % k] for k in "abcd"])
         root = root_fibre_stretch(dirs[m]) if m.startswith("iga") else None
-        lines.append("| %s | %d / %d | %.0f s | %+.3f | %+.3f | %.3f | %s |" % (
+        lines.append("| %s | %d / %d | %.0f s | %+.3f | %+.3f | %+.3f, %+.3f | %.3f | %s |" % (
             m, s["elements"], s["dofs"], s["wall_seconds"]["total"], 1e3 * p["free_end_y"],
-            1e3 * mean4, s["min_jacobian"]["value"],
+            1e3 * mean4, 1e3 * p["free_end_x"], 1e3 * p["free_end_z"], s["min_jacobian"]["value"],
             "%.2f-%.2f" % root if root else "-"))
         if axis is not None:
             profile.append("| %s | " % m + " | ".join(
@@ -197,7 +239,7 @@ def main():
         width += ["| %s | " % m + " | ".join(width_uy(dirs[m], h)) + " |" for m in args.meshes]
     report = os.path.join(args.out, "dao_mesh_study.md")
     with open(report, "w") as f:
-        f.write("# DAO mouth corner, y at 0.2 s (mm)\n\n" + "\n".join(lines) +
+        f.write("# DAO mouth corner, y at 0.2 s (mm), jaw face %s\n\n" % args.jaw + "\n".join(lines) +
                 "\n\n## u_y on the centreline (mm)\n\n" + "\n".join(profile) +
                 "\n\n## The end's y against time (mm)\n\n" + "\n".join(history) +
                 "\n\n## u_y across the width (mm; x bins in mm)\n" + "\n".join(width) + "\n")
