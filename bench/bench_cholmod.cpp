@@ -122,10 +122,7 @@ void BM_EigenNumeric(benchmark::State& state) {
 // point or with a locally indefinite material tangent.
 void BM_LuFallback(benchmark::State& state) {
   SparseMatrix k = stiffness(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
-  const double shift = 0.02 * k.diagonal().mean();
-  for (int j = 0; j < k.cols(); ++j) {
-    k.coeffRef(j, j) -= shift;
-  }
+  isomuscle::solver::testing::shift_diagonal(k, 0.02 * k.diagonal().mean());
   isomuscle::solver::LinearSolverSettings settings;
   settings.ordering = ordering(state.range(2));
   isomuscle::solver::LinearSolver solver(settings);

@@ -158,4 +158,13 @@ inline ElasticitySystem make_elasticity(const ElasticityGrid& grid,
   return system;
 }
 
+// K - sigma I in place (K stored as its upper triangle or in full, with every diagonal entry
+// present): symmetric indefinite once sigma exceeds K's smallest eigenvalue, as a tangent past a
+// limit point.
+inline void shift_diagonal(SparseMatrix& k, double sigma) {
+  for (int j = 0; j < k.cols(); ++j) {
+    k.coeffRef(j, j) -= sigma;
+  }
+}
+
 }  // namespace isomuscle::solver::testing

@@ -4,7 +4,7 @@
 Runs copies of examples/dao/contract.toml (IGA, `knot_insertion` changed) and contract-tet.toml
 (`element_size` changed) with four more point probes on the mouth-corner end face, at half its
 semi-axes (+-1.5 mm across the width, +-1 mm across the thickness from the centre (4, 2, 34) mm),
-and writes OUT/dao_mesh_study.md with three tables:
+and writes OUT/dao_mesh_study.md with these tables:
 
 * the end's y at the centre probe (on the shrink solid's collapsed axis) and the mean of the four
   off-axis probes, with the smallest pointwise J of the run (summary.json's min_jacobian);
@@ -71,21 +71,25 @@ WIDTH_HEIGHTS_MM = [3, 10, 15, 22]
 WIDTH_BINS_MM = np.arange(-14.0, 16.0, 2.0)
 
 
-def end_face_points():
-    """The four off-axis points of the end face: the end section's frame as the stand-in builds it."""
-    t = (END_CENTRE - BEFORE_END) / np.linalg.norm(END_CENTRE - BEFORE_END)
+def section_frame(chord):
+    """(e1, e2): a section's major and minor axis directions as geometry/shapes.cpp builds them from
+    the chord through its neighbouring centres: e1 the x axis made normal to the chord."""
+    t = chord / np.linalg.norm(chord)
     e1 = np.array([1.0, 0.0, 0.0]) - t[0] * t
     e1 /= np.linalg.norm(e1)
-    e2 = np.cross(t, e1)
+    return e1, np.cross(t, e1)
+
+
+def end_face_points():
+    """The four off-axis points of the end face."""
+    e1, e2 = section_frame(END_CENTRE - BEFORE_END)
     return {"a": END_CENTRE + HALF_WIDTH * e1, "b": END_CENTRE - HALF_WIDTH * e1,
             "c": END_CENTRE + HALF_THICKNESS * e2, "d": END_CENTRE - HALF_THICKNESS * e2}
 
 
 def jaw_major_axis_end():
-    """The end of the jaw section's major axis, as geometry/shapes.cpp builds the section."""
-    t = JAW_CHORD / np.linalg.norm(JAW_CHORD)
-    e1 = np.array([1.0, 0.0, 0.0]) - t[0] * t
-    return JAW_HALF_WIDTH * e1 / np.linalg.norm(e1)
+    """The end of the jaw section's major axis (the jaw face's centre is the origin)."""
+    return JAW_HALF_WIDTH * section_frame(JAW_CHORD)[0]
 
 
 def scene(mesh, folder, jaw="clamped"):
