@@ -8,6 +8,10 @@
 // solver::LinearSolver: the failed Cholesky and UMFPACK's LU that replaces it (symmetric strategy
 // in CHOLMOD's order, umfpack_lu.hpp), per Newton iteration that meets an indefinite tangent;
 // counters nnz_LU against nnz_L.
+// BM_ShiftFallback: the same indefinite matrices with the shift response (Cholesky of K + beta I,
+// linear_solver.hpp): the failed Cholesky and the shifted attempts that replace the LU; after the
+// first call the sequence starts one step below the last sufficient shift, as it does in a Newton
+// solve; counters shift (tau) and attempts (Cholesky factorisations per call, steady state).
 //
 // Arguments: {elements per side, degree, ordering (0 default, 1 AMD, 2 METIS, 3 NESDIS)}.
 // Counters: unknowns, nnz_L (nonzeros of the factor), GFlop (of one numeric factorisation) and
@@ -121,8 +125,8 @@ void BM_EigenNumeric(benchmark::State& state) {
 // Cholesky attempt and LU fallback of an indefinite matrix: once per Newton iteration past a limit
 // point or with a locally indefinite material tangent.
 void BM_LuFallback(benchmark::State& state) {
-  SparseMatrix k = stiffness(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
-  isomuscle::solver::testing::shift_diagonal(k, 0.02 * k.diagonal().mean());
+  const SparseMatrix k = isomuscle::solver::testing::below_mean_diagonal(
+      stiffness(static_cast<int>(state.range(0)), static_cast<int>(state.range(1))), 0.02);
   isomuscle::solver::LinearSolverSettings settings;
   settings.ordering = ordering(state.range(2));
   isomuscle::solver::LinearSolver solver(settings);
@@ -137,6 +141,34 @@ void BM_LuFallback(benchmark::State& state) {
   state.counters["nnz_L"] = solver.cholesky().factor_nonzeros();
   state.counters["nnz_LU"] = solver.lu().factor_nonzeros();
   state.SetLabel(solver.lu().symmetric_strategy() ? "symmetric" : "unsymmetric");
+}
+
+// The same with the shift response: the steady state of one Newton iteration that meets it.
+void BM_ShiftFallback(benchmark::State& state) {
+  const SparseMatrix k = isomuscle::solver::testing::below_mean_diagonal(
+      stiffness(static_cast<int>(state.range(0)), static_cast<int>(state.range(1))), 0.02);
+  isomuscle::solver::LinearSolverSettings settings;
+  settings.ordering = ordering(state.range(2));
+  settings.indefinite = isomuscle::solver::IndefiniteResponse::Shift;
+  isomuscle::solver::LinearSolver solver(settings);
+  if (!solver.factorize(k).ok) {  // the first call walks the sequence up from shift_initial
+    state.SkipWithError("no shifted factorisation");
+    return;
+  }
+  const int before = solver.statistics().cholesky_factorizations;
+  for (auto _ : state) {
+    const isomuscle::solver::FactorizationReport report = solver.factorize(k);
+    if (!report.ok || report.shift <= 0.0) {
+      state.SkipWithError("no shifted factorisation");
+      break;
+    }
+  }
+  state.counters["unknowns"] = static_cast<double>(k.rows());
+  state.counters["nnz_L"] = solver.cholesky().factor_nonzeros();
+  state.counters["shift"] = solver.last_report().shift;
+  state.counters["attempts"] =
+      static_cast<double>(solver.statistics().cholesky_factorizations - before) /
+      static_cast<double>(state.iterations());
 }
 
 // Degree 1: 3.3k, 11.5k, 25k, 49k unknowns; degree 2 (IGA): 4.8k, 11.5k, 22k, 39k unknowns.
@@ -174,6 +206,11 @@ BENCHMARK(BM_RawNumeric)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
 BENCHMARK(BM_LuFallback)
+    ->Apply(sizes)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+BENCHMARK(BM_ShiftFallback)
     ->Apply(sizes)
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()

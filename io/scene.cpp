@@ -108,6 +108,18 @@ const char* to_string(TangentKind k) {
   return k == TangentKind::consistent ? "consistent" : "frozen_ce";
 }
 
+const char* to_string(IndefiniteTangent k) {
+  switch (k) {
+    case IndefiniteTangent::lu:
+      return "lu";
+    case IndefiniteTangent::shift:
+      return "shift";
+    case IndefiniteTangent::cut:
+      return "cut";
+  }
+  return "unknown";
+}
+
 const char* to_string(ProbeKind k) {
   static const char* names[] = {"point_displacement", "face_reaction", "volume", "stress_parts"};
   return names[static_cast<int>(k)];
@@ -342,6 +354,7 @@ void TimeSettings::validate() const {
 
 void SolverSettings::validate() const {
   check_range("newton_max_iterations", newton_max_iterations, Range::closed(1, 1000));
+  check_range("stall_iterations", stall_iterations, Range::closed(0, 1000));
   check_range("tolerance_residual", tolerance_residual, Range{0.0, 1.0, true, true});
   check_range("tolerance_energy", tolerance_energy, Range{0.0, 1.0, true, true});
   check_range("threads", threads, Range::closed(0, 4096));

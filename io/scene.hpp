@@ -174,9 +174,19 @@ struct TimeSettings {
 enum class Formulation { mixed, displacement };
 enum class LinearSolverKind { cholmod, umfpack };
 enum class TangentKind { consistent, frozen_ce };
+// What Newton does when Cholesky finds the tangent not positive definite
+// (solver/linear_solver.hpp): LU of it, Cholesky of it shifted by a multiple of the identity, or no
+// direction (the step is cut). The default is lu: some converged states of these runs have an
+// indefinite tangent themselves (the displacement formulation's barrel cells of
+// validation/stability, 2026-12-05: with shift they crept to |r| ~ 1e-6 relative and failed, where
+// LU's exact Newton direction converges quadratically). shift and cut are cheaper where the
+// indefinite tangents are only those of states far from equilibrium (validation/suite/README.md,
+// the DAO on tetrahedra).
+enum class IndefiniteTangent { lu, shift, cut };
 const char* to_string(Formulation f);
 const char* to_string(LinearSolverKind k);
 const char* to_string(TangentKind k);
+const char* to_string(IndefiniteTangent k);
 
 struct SolverSettings {
   Formulation formulation = Formulation::mixed;
@@ -187,6 +197,11 @@ struct SolverSettings {
   bool line_search = true;
   LinearSolverKind linear_solver = LinearSolverKind::cholmod;
   TangentKind tangent = TangentKind::consistent;
+  IndefiniteTangent indefinite_tangent = IndefiniteTangent::lu;
+  // Consecutive short line-search steps (1/16 or less, |r| not halved) after which a step's
+  // Newton solve counts as stalled and the step is cut (solver::NewtonSettings::max_short_steps);
+  // 0: never.
+  int stall_iterations = 4;
   int threads = 0;  // 0: every available core
   // Threads of the BLAS under CHOLMOD (solver/blas_threads.hpp); 0: the BLAS's own default.
   int blas_threads = 1;

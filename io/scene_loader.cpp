@@ -314,6 +314,11 @@ SolverSettings read_solver(std::optional<SceneTable> t) {
   s.tangent = t->choice("tangent", "consistent", {"consistent", "frozen_ce"}) == "consistent"
                   ? TangentKind::consistent
                   : TangentKind::frozen_ce;
+  const std::string indefinite = t->choice("indefinite_tangent", "lu", {"lu", "shift", "cut"});
+  s.indefinite_tangent = indefinite == "lu"      ? IndefiniteTangent::lu
+                         : indefinite == "shift" ? IndefiniteTangent::shift
+                                                 : IndefiniteTangent::cut;
+  s.stall_iterations = t->integer("stall_iterations", s.stall_iterations);
   s.threads = t->integer("threads", s.threads);
   s.blas_threads = t->integer("blas_threads", s.blas_threads);
   t->finish();

@@ -74,6 +74,9 @@
 //   line_search = true
 //   linear_solver = "cholmod"    # "cholmod" | "umfpack"
 //   tangent = "consistent"       # "consistent" | "frozen_ce"
+//   indefinite_tangent = "lu"    # when Cholesky fails: "lu" | "shift" (Cholesky of K + beta I)
+//                                # | "cut" (cut the step) (solver/linear_solver.hpp)
+//   stall_iterations = 4         # short line-search steps in a row that cut the step; 0: never
 //   threads = 0                  # assembly threads, 0: all cores
 //   blas_threads = 1             # threads of the BLAS under CHOLMOD, 0: the BLAS's default
 //

@@ -164,9 +164,20 @@ solver::NewtonSettings newton_settings(const SolverSettings& s, const RunModel& 
   n.relative_residual_tolerance = s.tolerance_residual;
   n.relative_energy_tolerance = s.tolerance_energy;
   n.line_search = s.line_search;
+  n.max_short_steps = s.stall_iterations;
   n.linear.method = s.linear_solver == LinearSolverKind::cholmod ? solver::LinearMethod::Cholesky
                                                                  : solver::LinearMethod::Lu;
-  n.linear.lu_fallback = true;
+  switch (s.indefinite_tangent) {
+    case IndefiniteTangent::lu:
+      n.linear.indefinite = solver::IndefiniteResponse::Lu;
+      break;
+    case IndefiniteTangent::shift:
+      n.linear.indefinite = solver::IndefiniteResponse::Shift;
+      break;
+    case IndefiniteTangent::cut:
+      n.linear.indefinite = solver::IndefiniteResponse::Fail;
+      break;
+  }
   n.linear.blas_threads = s.blas_threads;
   const double volume = model.reference_volume();
   const double modulus = model.modulus_scale();
@@ -262,7 +273,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         std::vector<std::string>{"step", "time", "dt", "iteration", "initial_residual_norm",
                                  "residual_norm", "relative_residual", "energy", "relative_energy",
                                  "step_length", "line_search_halvings", "rcond", "lu_fallback",
-                                 "converged"});
+                                 "shift", "converged"});
   } catch (const std::exception& e) {
     result.setup_failed = true;
     return finish(std::string("set-up failed: ") + e.what());
@@ -315,7 +326,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
             {static_cast<double>(step), time, dt, static_cast<double>(it.iteration),
              n.initial_residual_norm, it.residual_norm, it.relative_residual, it.energy,
              it.relative_energy, it.step_length, static_cast<double>(it.line_search_halvings),
-             it.rcond, it.lu_fallback ? 1.0 : 0.0, converged ? 1.0 : 0.0});
+             it.rcond, it.lu_fallback ? 1.0 : 0.0, it.shift, converged ? 1.0 : 0.0});
       }
     };
     const auto on_cut = [&](const solver::StepCut& cut, const solver::NewtonResult& n) {
@@ -389,7 +400,12 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
              {"cholesky_factorizations", ls.cholesky_factorizations},
              {"cholesky_failures", ls.cholesky_failures},
              {"lu_factorizations", ls.lu_factorizations},
+             {"indefinite_tangent", to_string(scene.solver.indefinite_tangent)},
              {"lu_fallbacks", ls.lu_fallbacks},
+             {"lu_seconds", ls.time.lu},
+             {"shifted_factorizations", ls.shifted_factorizations},
+             {"max_shift", ls.max_shift},
+             {"shifted_seconds", ls.time.shifted},
              {"failures", ls.failures},
              {"symbolic_analyses", ls.symbolic_analyses},
              {"min_rcond", factorised ? Json(min_rcond) : Json(nullptr)}};

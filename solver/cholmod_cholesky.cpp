@@ -157,8 +157,9 @@ void CholmodCholesky::analyze(const SparseMatrix& a) {
   s.ordering = s.factor->ordering;
 }
 
-// Numeric factorisation P A P^T = L L^T (cholmod_factorize), reusing the symbolic analysis.
-CholeskyStatus CholmodCholesky::factorize(const SparseMatrix& a) {
+// Numeric factorisation P (A + shift I) P^T = L L^T (cholmod_factorize_p), reusing the symbolic
+// analysis.
+CholeskyStatus CholmodCholesky::factorize(const SparseMatrix& a, double shift) {
   check_matrix(a, "factorize");
   Impl& s = *impl_;
   if (s.factor == nullptr) {
@@ -170,7 +171,8 @@ CholeskyStatus CholmodCholesky::factorize(const SparseMatrix& a) {
                                 std::to_string(s.factor->n));
   }
   cholmod_sparse view = view_of(a);
-  const int ok = cholmod_factorize(&view, s.factor, &s.common);
+  double beta[2] = {shift, 0.0};
+  const int ok = cholmod_factorize_p(&view, beta, nullptr, 0, s.factor, &s.common);
   CholeskyStatus status;
   s.numeric_ok = false;
   s.rcond = 0.0;

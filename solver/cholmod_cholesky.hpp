@@ -43,8 +43,9 @@ class CholmodCholesky {
   // Symbolic analysis of the pattern of a (compressed, square; values unused). Throws
   // std::runtime_error when CHOLMOD fails (e.g. out of memory), naming the CHOLMOD status.
   void analyze(const SparseMatrix& a);
-  // Numeric factorisation of a, which must have the analysed pattern (the caller checks).
-  CholeskyStatus factorize(const SparseMatrix& a);
+  // Numeric factorisation of a + shift I (cholmod_factorize_p's beta; the matrix is not copied),
+  // a with the analysed pattern (the caller checks). shift = 0: of a itself.
+  CholeskyStatus factorize(const SparseMatrix& a, double shift = 0.0);
   // x = A^{-1} b with the last successful factorisation. Throws std::logic_error when there is
   // none.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);

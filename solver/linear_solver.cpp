@@ -44,9 +44,33 @@ std::string to_string(LinearMethod method) {
   return "unknown";
 }
 
+std::string to_string(IndefiniteResponse response) {
+  switch (response) {
+    case IndefiniteResponse::Fail:
+      return "fail";
+    case IndefiniteResponse::Lu:
+      return "lu";
+    case IndefiniteResponse::Shift:
+      return "shift";
+  }
+  return "unknown";
+}
+
 void LinearSolverSettings::validate() const {
   if (method == LinearMethod::None) {
     throw SettingError("method", "must be Cholesky (CHOLMOD) or LU (UMFPACK) (got none)");
+  }
+  if (!(shift_initial > 0.0) || !std::isfinite(shift_initial)) {
+    throw SettingError("shift_initial",
+                       "must be a finite number > 0 (got " + format_number(shift_initial) + ")");
+  }
+  if (!(shift_growth > 1.0) || !std::isfinite(shift_growth)) {
+    throw SettingError("shift_growth",
+                       "must be a finite number > 1 (got " + format_number(shift_growth) + ")");
+  }
+  if (shift_attempts < 1 || shift_attempts > 100) {
+    throw SettingError("shift_attempts",
+                       "must be in [1, 100] (got " + std::to_string(shift_attempts) + ")");
   }
   if (blas_threads < 0 || blas_threads > 4096) {
     throw SettingError("blas_threads",
@@ -67,6 +91,7 @@ struct LinearSolver::Impl {
   SparseMatrix full;
   std::vector<int> to_full;
   LinearMethod active = LinearMethod::None;
+  double last_shift = 0.0;  // tau of the last successful shifted factorisation, 0 when none
   FactorizationReport report;
   LinearSolverStatistics stats;
 
@@ -188,6 +213,7 @@ struct LinearSolver::Impl {
     LuStatus status;
     {
       ScopedTimer timer(stats.time.numeric);
+      ScopedTimer lu_timer(stats.time.lu);
       status = lu.factorize(matrix);
     }
     ++stats.lu_factorizations;
@@ -206,6 +232,60 @@ struct LinearSolver::Impl {
     if (fell_back) {
       report.message = cholesky_message + "; factorised by LU instead";
     }
+  }
+
+  // Cholesky of a + beta I, beta = tau mean|a_ii|, for growing tau (the header's Shift); fills
+  // report. The mean of the diagonal makes tau dimensionless: the tangent's own stiffness scale.
+  void factorize_shifted(const SparseMatrix& a, const std::string& cholesky_message) {
+    double diagonal_sum = 0.0;
+    for (int j = 0; j < a.cols(); ++j) {
+      for (int k = a.outerIndexPtr()[j]; k < a.outerIndexPtr()[j + 1]; ++k) {
+        if (a.innerIndexPtr()[k] == j) {
+          diagonal_sum += std::abs(a.valuePtr()[k]);
+        }
+      }
+    }
+    const double scale = diagonal_sum / static_cast<double>(a.cols());
+    report.fell_back = true;
+    if (!(scale > 0.0)) {
+      report.message = cholesky_message + "; no shift possible (the diagonal is zero)";
+      return;
+    }
+    double tau = std::max(settings.shift_initial, last_shift / settings.shift_growth);
+    for (int attempt = 0; attempt < settings.shift_attempts; ++attempt) {
+      CholeskyStatus status;
+      {
+        ScopedTimer timer(stats.time.numeric);
+        ScopedTimer shifted_timer(stats.time.shifted);
+        status = cholesky.factorize(a, tau * scale);
+      }
+      ++stats.cholesky_factorizations;
+      if (status.ok) {
+        ++stats.shifted_factorizations;
+        stats.max_shift = std::max(stats.max_shift, tau);
+        last_shift = tau;
+        report.ok = true;
+        report.method = LinearMethod::Cholesky;
+        report.shift = tau;
+        report.rcond = cholesky.rcond();
+        report.message =
+            cholesky_message + "; factorised K + " + format_number(tau) + " mean|K_ii| I instead";
+        active = LinearMethod::Cholesky;
+        return;
+      }
+      ++stats.cholesky_failures;
+      if (!status.not_positive_definite) {
+        report.message = cholesky_message + "; then, shifted by " + format_number(tau) +
+                         " mean|K_ii|: " + status.message;
+        return;
+      }
+      tau *= settings.shift_growth;
+    }
+    last_shift = 0.0;
+    report.message = cholesky_message +
+                     "; K + tau mean|K_ii| I was not positive definite either for " +
+                     std::to_string(settings.shift_attempts) +
+                     " shifts up to tau = " + format_number(tau / settings.shift_growth);
   }
 };
 
@@ -256,15 +336,27 @@ FactorizationReport LinearSolver::factorize(const SparseMatrix& a) {
       s.report.method = LinearMethod::Cholesky;
       s.report.rcond = s.cholesky.rcond();
       s.active = LinearMethod::Cholesky;
+      s.last_shift = 0.0;
       return s.report;
     }
     ++s.stats.cholesky_failures;
-    if (!s.settings.lu_fallback) {
-      s.report.message = status.message + " (LU fallback disabled)";
+    // LU takes any failed matrix (as it always did); a shift only helps an indefinite one.
+    const bool shift = s.settings.indefinite == IndefiniteResponse::Shift;
+    if (s.settings.indefinite == IndefiniteResponse::Fail ||
+        (shift && !status.not_positive_definite)) {
+      s.report.message =
+          status.message +
+          (s.settings.indefinite == IndefiniteResponse::Fail
+               ? " (response to an indefinite tangent: fail, no LU or shifted factorisation tried)"
+               : "");
       ++s.stats.failures;
       return s.report;
     }
-    s.factorize_lu(a, true, status.message);
+    if (shift) {
+      s.factorize_shifted(a, status.message);
+    } else {
+      s.factorize_lu(a, true, status.message);
+    }
   } else {
     s.factorize_lu(a, false, "");
   }

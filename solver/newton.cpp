@@ -48,6 +48,13 @@ void NewtonSettings::validate() const {
     throw SettingError("max_line_search_halvings",
                        "must be in [0, 60] (got " + std::to_string(max_line_search_halvings) + ")");
   }
+  if (max_short_steps < 0) {
+    throw SettingError("max_short_steps",
+                       "must be >= 0 (0: off) (got " + std::to_string(max_short_steps) + ")");
+  }
+  if (!(short_step > 0.0 && short_step < 1.0)) {
+    throw SettingError("short_step", "must be in (0, 1) (got " + format_number(short_step) + ")");
+  }
   if (!(armijo_coefficient > 0.0 && armijo_coefficient < 1.0)) {
     throw SettingError("armijo_coefficient",
                        "must be in (0, 1) (got " + format_number(armijo_coefficient) + ")");
@@ -73,6 +80,8 @@ std::string to_string(NewtonStop stop) {
       return "linear solver failed";
     case NewtonStop::Diverged:
       return "diverged";
+    case NewtonStop::Stalled:
+      return "stalled";
   }
   return "unknown";
 }
@@ -152,6 +161,7 @@ NewtonResult NewtonSolver::solve(NonlinearProblem& problem, Eigen::VectorXd& u) 
   double previous_norm = r0;           // |r_{k-1}|
   double before_previous_norm = kNaN;  // |r_{k-2}|
   double r_norm = r0;
+  int short_steps = 0;  // consecutive iterations with alpha <= short_step
 
   for (int k = 1; k <= s.max_iterations; ++k) {
     // Linear solve K du = -r.
@@ -163,7 +173,8 @@ NewtonResult NewtonSolver::solve(NonlinearProblem& problem, Eigen::VectorXd& u) 
     }
     result.min_rcond = std::min(result.min_rcond, factor.rcond);
     ++result.factorizations;
-    result.lu_fallbacks += factor.fell_back ? 1 : 0;
+    result.lu_fallbacks += factor.fell_back && factor.method == LinearMethod::Lu ? 1 : 0;
+    result.shifted_factorizations += factor.shift > 0.0 ? 1 : 0;
     rhs_ = -residual_;
     linear_solver_.solve(rhs_, du_);
     if (!du_.allFinite()) {
@@ -249,7 +260,8 @@ NewtonResult NewtonSolver::solve(NonlinearProblem& problem, Eigen::VectorXd& u) 
             ? kNaN
             : std::log(r_norm / previous_norm) / std::log(previous_norm / before_previous_norm);
     record.linear_method = factor.method;
-    record.lu_fallback = factor.fell_back;
+    record.lu_fallback = factor.fell_back && factor.method == LinearMethod::Lu;
+    record.shift = factor.shift;
     record.rcond = factor.rcond;
     result.history.push_back(record);
     before_previous_norm = previous_norm;
@@ -273,6 +285,23 @@ NewtonResult NewtonSolver::solve(NonlinearProblem& problem, Eigen::VectorXd& u) 
                     "converged at round-off in " + std::to_string(k) + " iterations: |r| = " +
                         sci(r_norm) + " stagnates and the correction max|du| = " + sci(correction) +
                         " <= " + sci(s.correction_tolerance));
+    }
+    // Stall (header): the last max_short_steps line searches all cut the step short and |r| has
+    // not halved over them (|r| before them: r_0, or after the iteration before them).
+    short_steps = alpha <= s.short_step ? short_steps + 1 : 0;
+    const int window_start = k - s.max_short_steps;  // iterations before the window
+    const double r_before_short =
+        window_start <= 0
+            ? r0
+            : result.history[static_cast<std::size_t>(window_start) - 1].residual_norm;
+    if (s.max_short_steps > 0 && short_steps >= s.max_short_steps && k < s.max_iterations &&
+        r_norm > 0.5 * r_before_short) {
+      return finish(NewtonStop::Stalled, "iteration " + std::to_string(k) + ": the last " +
+                                             std::to_string(s.max_short_steps) +
+                                             " line searches took steps of " + sci(s.short_step) +
+                                             " or less (|r| " + sci(r_before_short) + " -> " +
+                                             sci(r_norm) + ", relative " + sci(r_norm / r0) +
+                                             "); the Newton direction is poor here");
     }
     if (!s.line_search && r_norm > s.divergence_factor * r0) {
       return finish(NewtonStop::Diverged,

@@ -151,6 +151,7 @@ TimeStepperResult TimeStepper::run(NonlinearProblem& problem, Eigen::VectorXd& u
       record.final_residual_norm = newton.final_residual_norm;
       record.min_rcond = newton.min_rcond;
       record.lu_fallbacks = newton.lu_fallbacks;
+      record.shifted_factorizations = newton.shifted_factorizations;
       record.output_time = lands && is_output_time(t);
       result.steps.push_back(record);
       if (on_step) {

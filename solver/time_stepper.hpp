@@ -61,6 +61,7 @@ struct StepRecord {
   double final_residual_norm = 0.0;
   double min_rcond = 0.0;
   int lu_fallbacks = 0;
+  int shifted_factorizations = 0;
   bool output_time = false;  // the step ended on a requested output time
 };
 

@@ -420,6 +420,70 @@ TEST_F(RunCli, FixedStepGrowsBackToDtAfterACut) {
   EXPECT_EQ(newton.rows.back()[newton.column("converged")], 1.0);  // the last step converged
 }
 
+// A 40 % stretch of the passive barrel in one step meets tangents that Cholesky finds not positive
+// definite in every Newton iteration (the stretched state's own tangent among them). The three
+// responses of [solver] indefinite_tangent: "lu" and "shift" reach the same equilibrium (the pull
+// on the free end agrees to 1e-6), each counting its factorisations in summary.json and marking
+// its iterations in newton.csv; "cut" gives up each attempt, and the run fails saying so, with
+// the steps converged so far kept.
+TEST_F(RunCli, IndefiniteTangentResponsesReachTheSameStretchOrCut) {
+  const auto stretch = [&](const std::string& response, const std::string& time) {
+    const fs::path scene =
+        write("stretch_" + response + ".toml",
+              barrel_scene("[material]\nmodel = \"lu2010\"\n[material.parameters]\nn2 = 0.0\n",
+                           "[[boundary]]\nface = \"v1\"\ntype = \"displacement\"\n"
+                           "velocity = [0.0, 0.0, 0.2]\n",
+                           time,
+                           "indefinite_tangent = \"" + response +
+                               "\"\n[[probe]]\nname = \"pull\"\nkind = \"face_reaction\"\n"
+                               "face = \"v1\"\ncomponent = \"z\"\n"));
+    const fs::path out = dir_ / ("stretch_" + response);
+    return std::make_pair(run("run " + scene.string() + " --out " + out.string()), out);
+  };
+  const auto [lu_run, lu_out] = stretch("lu", "end = 0.1\ndt = 0.1\n");
+  ASSERT_EQ(lu_run.code, 0) << lu_run.err;
+  const nlohmann::json lu = summary(lu_out);
+  const nlohmann::json& lu_stats = lu["linear_solver_statistics"];
+  EXPECT_EQ(lu_stats["indefinite_tangent"], "lu");
+  EXPECT_GE(lu_stats["lu_fallbacks"].get<int>(), 1);
+  EXPECT_EQ(lu_stats["shifted_factorizations"].get<int>(), 0);
+  EXPECT_NE(lu_run.out.find("indefinite tangents: Cholesky failed"), std::string::npos)
+      << lu_run.out;
+
+  const auto [shift_run, shift_out] = stretch("shift", "end = 0.1\ndt = 0.1\n");
+  ASSERT_EQ(shift_run.code, 0) << shift_run.err;
+  const nlohmann::json shift = summary(shift_out);
+  const nlohmann::json& shift_stats = shift["linear_solver_statistics"];
+  EXPECT_EQ(shift_stats["lu_factorizations"].get<int>(), 0);
+  EXPECT_GE(shift_stats["shifted_factorizations"].get<int>(), 1);
+  EXPECT_GT(shift_stats["max_shift"].get<double>(), 0.0);
+  const Table newton = read_csv(shift_out / "newton.csv");
+  int shifted_rows = 0;
+  for (const auto& row : newton.rows) {
+    EXPECT_EQ(row[newton.column("lu_fallback")], 0.0);
+    shifted_rows += row[newton.column("shift")] > 0.0 ? 1 : 0;
+  }
+  EXPECT_EQ(shifted_rows, shift_stats["shifted_factorizations"].get<int>());
+  const double lu_pull = lu["probes"]["pull"].get<double>();
+  EXPECT_GT(std::abs(lu_pull), 0.0);
+  EXPECT_NEAR(shift["probes"]["pull"].get<double>(), lu_pull, 1e-6 * std::abs(lu_pull));
+
+  // dt_min 0.02: the 0.1 s step is cut to 0.05 and 0.025 s, whose tangents are indefinite too.
+  const auto [cut_run, cut_out] = stretch("cut", "end = 0.1\ndt = 0.1\ndt_min = 0.02\n");
+  EXPECT_EQ(cut_run.code, 1) << cut_run.err;
+  const nlohmann::json cut = summary(cut_out);
+  EXPECT_EQ(cut["status"], "failed");
+  const std::string reason = cut["reason"].get<std::string>();
+  EXPECT_NE(reason.find("not positive definite"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("no LU or shifted factorisation tried"), std::string::npos) << reason;
+  EXPECT_EQ(cut["linear_solver_statistics"]["lu_factorizations"].get<int>(), 0);
+  EXPECT_EQ(cut["linear_solver_statistics"]["shifted_factorizations"].get<int>(), 0);
+  EXPECT_GE(cut["step_cuts"].size(), 2u);
+  EXPECT_NE(cut_run.err.find("indefinite_tangent = \"cut\": each ended its Newton solve"),
+            std::string::npos)
+      << cut_run.err;
+}
+
 // The displacement formulation with a nearly incompressible law (lu2010: kappa/mu ~ 1e4) is
 // allowed, for comparisons, but the run says at set-up, and in the reason when it fails, that it
 // locks and which formulation this law needs.

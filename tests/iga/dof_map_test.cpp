@@ -89,7 +89,7 @@ TwistRun twist(const geometry::NurbsVolume& v, const DofMap& dofs) {
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(dense, Eigen::EigenvaluesOnly);
   run.min_eigenvalue = eig.eigenvalues().minCoeff() / eig.eigenvalues().maxCoeff();
   solver::LinearSolverSettings ls;
-  ls.lu_fallback = false;
+  ls.indefinite = solver::IndefiniteResponse::Fail;
   solver::LinearSolver linear(ls);
   run.factorised = linear.factorize(K).ok;
   if (run.factorised) {

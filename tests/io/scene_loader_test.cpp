@@ -115,6 +115,8 @@ TEST_F(SceneLoader, EveryFieldRoundTrips) {
       "line_search = false\n"
       "linear_solver = \"umfpack\"\n"
       "tangent = \"frozen_ce\"\n"
+      "indefinite_tangent = \"shift\"\n"
+      "stall_iterations = 0\n"
       "threads = 2\n"
       "[output]\n"
       "times = [0.5, 1, 3.0]\n"
@@ -190,6 +192,8 @@ TEST_F(SceneLoader, EveryFieldRoundTrips) {
   EXPECT_FALSE(s.solver.line_search);
   EXPECT_EQ(s.solver.linear_solver, LinearSolverKind::umfpack);
   EXPECT_EQ(s.solver.tangent, TangentKind::frozen_ce);
+  EXPECT_EQ(s.solver.indefinite_tangent, IndefiniteTangent::shift);
+  EXPECT_EQ(s.solver.stall_iterations, 0);
   EXPECT_EQ(s.solver.threads, 2);
 
   EXPECT_EQ(s.output.times, (std::vector<double>{0.5, 1.0, 3.0}));
@@ -227,6 +231,8 @@ TEST_F(SceneLoader, DefaultsOfAMinimalScene) {
   EXPECT_TRUE(s.time.adaptive);
   EXPECT_EQ(s.solver.formulation, Formulation::mixed);
   EXPECT_EQ(s.solver.linear_solver, LinearSolverKind::cholmod);
+  EXPECT_EQ(s.solver.indefinite_tangent, IndefiniteTangent::lu);
+  EXPECT_EQ(s.solver.stall_iterations, 4);
   EXPECT_TRUE(s.output.times.empty());
   EXPECT_EQ(s.output.every, 0.0);
   EXPECT_TRUE(s.probes.empty());
@@ -274,7 +280,8 @@ TEST_F(SceneLoader, TypoInATableIsReportedBeforeTheKeyItHides) {
   EXPECT_EQ(key.message(),
             "unknown key 'linear_solvr' in [solver]; did you mean 'linear_solver'? valid keys: "
             "formulation, newton_max_iterations, tolerance_residual, tolerance_energy, "
-            "line_search, linear_solver, tangent, threads, blas_threads");
+            "line_search, linear_solver, tangent, indefinite_tangent, stall_iterations, threads, "
+            "blas_threads");
 }
 
 TEST_F(SceneLoader, MaterialModelAndParametersAreCheckedByTheFactory) {

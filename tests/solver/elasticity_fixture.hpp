@@ -167,4 +167,12 @@ inline void shift_diagonal(SparseMatrix& k, double sigma) {
   }
 }
 
+// K - fraction mean(diag K) I, a copy: the indefinite tangents of the solver tests and benchmarks
+// (fraction 0.02 and 0.5 put sigma above the smallest eigenvalue of the elasticity grids).
+inline SparseMatrix below_mean_diagonal(const SparseMatrix& k, double fraction) {
+  SparseMatrix shifted = k;
+  shift_diagonal(shifted, fraction * k.diagonal().mean());
+  return shifted;
+}
+
 }  // namespace isomuscle::solver::testing

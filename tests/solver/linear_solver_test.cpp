@@ -89,8 +89,8 @@ TEST(LinearSolver, FullStorageSymmetricMatrixGivesTheSameSolution) {
   const testing::ElasticitySystem upper = testing::make_elasticity({6, 2});
   const testing::ElasticitySystem full = testing::make_elasticity({6, 2}, MatrixStorage::Full);
   LinearSolver upper_solver;
-  LinearSolver full_solver(LinearSolverSettings{MatrixStorage::Full, LinearMethod::Cholesky, true,
-                                                CholeskyOrdering::Amd});
+  LinearSolver full_solver(LinearSolverSettings{MatrixStorage::Full, LinearMethod::Cholesky,
+                                                IndefiniteResponse::Lu, CholeskyOrdering::Amd});
   ASSERT_TRUE(upper_solver.factorize(upper.stiffness).ok);
   ASSERT_TRUE(full_solver.factorize(full.stiffness).ok);
   EXPECT_EQ(full_solver.cholesky().ordering_used(), "AMD");
@@ -158,14 +158,83 @@ TEST(LinearSolver, IndefiniteMatrixFallsBackToLuAndStillSolves) {
   EXPECT_EQ(stats.failures, 0);
 }
 
+// The shift response factorises K + tau mean|K_ii| I for the first tau of its sequence that makes
+// the matrix positive definite (the one before it does not), solves with that matrix, and starts
+// the next indefinite matrix one step of the sequence lower (Levenberg-Marquardt's relaxation).
+TEST(LinearSolver, ShiftResponseFactorisesTheFirstSufficientShiftAndRelaxesIt) {
+  const testing::ElasticitySystem system = testing::make_elasticity({8, 1});
+  const SparseMatrix k = testing::below_mean_diagonal(system.stiffness, 0.02);
+  LinearSolverSettings settings;
+  settings.indefinite = IndefiniteResponse::Shift;
+  LinearSolver solver(settings);
+  const FactorizationReport report = solver.factorize(k);
+  ASSERT_TRUE(report.ok) << report.message;
+  EXPECT_EQ(report.method, LinearMethod::Cholesky);
+  EXPECT_TRUE(report.fell_back);
+  EXPECT_NE(report.message.find("not positive definite"), std::string::npos) << report.message;
+  // The matrix was shifted by 0.02 mean(diag) below an SPD one: tau = 0.1 is the first power of
+  // ten in the sequence 1e-9, 1e-8, ... that restores positive definiteness (0.01 cannot, as the
+  // stiffness's smallest eigenvalue is far below 0.01 mean(diag)).
+  EXPECT_NEAR(report.shift, 0.1, 1e-12);
+  const double scale = k.diagonal().cwiseAbs().mean();
+  CholmodCholesky check;
+  check.analyze(k);
+  EXPECT_TRUE(check.factorize(k, report.shift * scale).ok);
+  EXPECT_FALSE(check.factorize(k, 0.1 * report.shift * scale).ok);
+
+  // solve() solves with the shifted matrix.
+  const Eigen::VectorXd b = random_vector(k.rows(), 23);
+  Eigen::VectorXd x;
+  solver.solve(b, x);
+  SparseMatrix shifted = k;
+  testing::shift_diagonal(shifted, -report.shift * scale);
+  EXPECT_LE(relative_residual(shifted, MatrixStorage::Upper, x, b), 1e-10);
+  // A descent direction of the quadratic form: b . x > 0 (x = (K + beta I)^-1 b, SPD).
+  EXPECT_GT(b.dot(x), 0.0);
+
+  const int attempts_first = solver.statistics().cholesky_factorizations;  // 1 + 9 shifts
+  EXPECT_EQ(attempts_first, 1 + 9);
+  // The same matrix again: the sequence starts at tau / 10 (fails), then tau.
+  ASSERT_TRUE(solver.factorize(k).ok);
+  EXPECT_NEAR(solver.last_report().shift, 0.1, 1e-12);
+  EXPECT_EQ(solver.statistics().cholesky_factorizations, attempts_first + 3);
+  // A positive definite matrix is factorised unshifted and resets the relaxation.
+  ASSERT_TRUE(solver.factorize(system.stiffness).ok);
+  EXPECT_EQ(solver.last_report().shift, 0.0);
+  EXPECT_FALSE(solver.last_report().fell_back);
+  const LinearSolverStatistics& stats = solver.statistics();
+  EXPECT_EQ(stats.shifted_factorizations, 2);
+  EXPECT_DOUBLE_EQ(stats.max_shift, report.shift);
+  EXPECT_EQ(stats.lu_factorizations, 0);
+  EXPECT_EQ(stats.failures, 0);
+  EXPECT_GT(stats.time.shifted, 0.0);
+  EXPECT_LE(stats.time.shifted, stats.time.numeric);
+}
+
+// When no shift of the sequence suffices (here: a single attempt, far too small) the factorisation
+// fails with the largest tau tried, and solve() has nothing to solve with.
+TEST(LinearSolver, ShiftResponseFailsNamingTheLargestShiftTried) {
+  const SparseMatrix k =
+      testing::below_mean_diagonal(testing::make_elasticity({6, 1}).stiffness, 0.5);
+  LinearSolverSettings settings;
+  settings.indefinite = IndefiniteResponse::Shift;
+  settings.shift_attempts = 2;
+  LinearSolver solver(settings);
+  const FactorizationReport report = solver.factorize(k);
+  EXPECT_FALSE(report.ok);
+  EXPECT_NE(report.message.find("2 shifts up to tau = 1e-08"), std::string::npos) << report.message;
+  Eigen::VectorXd x;
+  EXPECT_THROW(solver.solve(Eigen::VectorXd::Ones(k.rows()), x), std::logic_error);
+  EXPECT_EQ(solver.statistics().failures, 1);
+}
+
 // The LU fallback of an upper-stored symmetric matrix factorises it with UMFPACK's symmetric
 // strategy in CHOLMOD's order, so its L + U hold about twice the Cholesky factor's nonzeros. Before
 // 2026-12-04 UMFPACK analysed an unfilled expansion, saw no diagonal, took its unsymmetric
 // strategy, and on the DAO's tangent (27509 unknowns) had not finished after 16 minutes.
 TEST(LinearSolver, LuFallbackKeepsTheFillOfTheSymmetricPattern) {
-  const testing::ElasticitySystem system = testing::make_elasticity({8, 2});
-  SparseMatrix k = system.stiffness;
-  testing::shift_diagonal(k, 0.02 * k.diagonal().mean());
+  const SparseMatrix k =
+      testing::below_mean_diagonal(testing::make_elasticity({8, 2}).stiffness, 0.02);
   LinearSolver solver;
   const FactorizationReport report = solver.factorize(k);
   ASSERT_TRUE(report.ok) << report.message;
@@ -215,11 +284,11 @@ TEST(LinearSolver, WithoutFallbackAnIndefiniteMatrixIsAFailure) {
   k.insert(1, 1) = 1.0;
   k.makeCompressed();
   LinearSolverSettings settings;
-  settings.lu_fallback = false;
+  settings.indefinite = IndefiniteResponse::Fail;
   LinearSolver solver(settings);
   const FactorizationReport report = solver.factorize(k);
   EXPECT_FALSE(report.ok);
-  EXPECT_NE(report.message.find("fallback disabled"), std::string::npos) << report.message;
+  EXPECT_NE(report.message.find("fail, no LU or shifted factorisation tried"), std::string::npos) << report.message;
   Eigen::VectorXd x;
   EXPECT_THROW(solver.solve(Eigen::Vector2d(1.0, 0.0), x), std::logic_error);
   EXPECT_EQ(solver.statistics().failures, 1);
@@ -256,8 +325,8 @@ TEST(LinearSolver, NonSymmetricMatrixIsSolvedByLu) {
     }
   }
   a.makeCompressed();
-  LinearSolver solver(
-      LinearSolverSettings{MatrixStorage::Full, LinearMethod::Lu, true, CholeskyOrdering::Default});
+  LinearSolver solver(LinearSolverSettings{MatrixStorage::Full, LinearMethod::Lu,
+                                           IndefiniteResponse::Lu, CholeskyOrdering::Default});
   const FactorizationReport report = solver.factorize(a);
   ASSERT_TRUE(report.ok) << report.message;
   EXPECT_EQ(report.method, LinearMethod::Lu);
@@ -312,8 +381,8 @@ TEST(LinearSolver, BadInputIsReportedClearly) {
   EXPECT_THROW(LinearSolver().factorize(uncompressed), std::invalid_argument);
 
   try {
-    LinearSolver(LinearSolverSettings{MatrixStorage::Upper, LinearMethod::None, true,
-                                      CholeskyOrdering::Default});
+    LinearSolver(LinearSolverSettings{MatrixStorage::Upper, LinearMethod::None,
+                                      IndefiniteResponse::Lu, CholeskyOrdering::Default});
     FAIL() << "method none was accepted";
   } catch (const SettingError& error) {
     EXPECT_EQ(error.key(), "method");

@@ -111,6 +111,54 @@ TEST(Newton, IndefiniteTangentsAreFactorisedByLuAndCounted) {
   EXPECT_EQ(stats.lu_symbolic_analyses, 1);
 }
 
+// From a start whose tangent is indefinite (u_i from 0.45, on the hump side of the double well
+// where 3 u^2 - 1 < 0), the shift response's damped directions lead to the stable equilibrium near
+// u_i = 1, where the tangent is positive definite again and the last iterations are plain Newton
+// steps with quadratic convergence. The exact Newton direction (LU) converges to an equilibrium
+// with some springs on the hump (an unstable one: its tangent is indefinite).
+TEST(Newton, ShiftedTangentsLeadToTheStableEquilibrium) {
+  testing::DoubleWellChainProblem problem(40, 0.05);
+  const Eigen::VectorXd start = Eigen::VectorXd::LinSpaced(problem.size(), 0.45, 1.3);
+  NewtonSettings settings;
+  settings.absolute_residual_tolerance = 1e-14;
+  settings.max_iterations = 40;
+  settings.linear.indefinite = IndefiniteResponse::Shift;
+  NewtonSolver newton(settings);
+  Eigen::VectorXd u = start;
+  const NewtonResult result = newton.solve(problem, u);
+  print_history(result);
+  ASSERT_TRUE(result.converged) << result.message;
+  EXPECT_GT(u.minCoeff(), 0.9);
+  EXPECT_LT(u.maxCoeff(), 1.1);
+  EXPECT_GE(result.shifted_factorizations, 1);
+  EXPECT_EQ(result.lu_fallbacks, 0);
+  EXPECT_GT(result.history.front().shift, 0.0);
+  ASSERT_GE(result.history.size(), 3u);
+  for (std::size_t i = result.history.size() - 2; i < result.history.size(); ++i) {
+    EXPECT_EQ(result.history[i].shift, 0.0);
+    EXPECT_EQ(result.history[i].step_length, 1.0);
+  }
+  EXPECT_EQ(newton.linear_solver().statistics().lu_factorizations, 0);
+
+  NewtonSettings lu_settings = settings;
+  lu_settings.linear.indefinite = IndefiniteResponse::Lu;
+  NewtonSolver exact(lu_settings);
+  Eigen::VectorXd v = start;
+  const NewtonResult lu_result = exact.solve(problem, v);
+  print_history(lu_result);
+  ASSERT_TRUE(lu_result.converged) << lu_result.message;
+  EXPECT_LT(v.minCoeff(), 0.5);  // a spring left on the hump or in the other well
+  EXPECT_GE(lu_result.lu_fallbacks, 1);
+  // That equilibrium is unstable: its tangent is not positive definite.
+  Eigen::VectorXd r;
+  SparseMatrix k;
+  ASSERT_TRUE(problem.evaluate(v, r, &k).ok);
+  LinearSolverSettings no_response;
+  no_response.indefinite = IndefiniteResponse::Fail;
+  LinearSolver check(no_response);
+  EXPECT_FALSE(check.factorize(k).ok);
+}
+
 TEST(Newton, LineSearchRescuesAProblemPlainNewtonOvershoots) {
   testing::AtanChainProblem problem(50, 0.05);
   NewtonSettings plain_settings;
@@ -160,6 +208,75 @@ TEST(Newton, TrialStatesThatCannotBeEvaluatedAreHalvedAway) {
   EXPECT_EQ(failed.stop, NewtonStop::EvaluationFailed);
   EXPECT_NE(failed.message.find("exceeds 3"), std::string::npos) << failed.message;
   EXPECT_NE(failed.message.find("line search off"), std::string::npos) << failed.message;
+}
+
+// A problem whose tangent is 500 times too soft: every Newton correction is 500 times too long,
+// the line search accepts 1/256 of it and (near the solution, where the problem is nearly linear)
+// |r| falls by 5 % an iteration. Four such short steps in a
+// row stop the solve as stalled (the time stepper then cuts the step); without the rule it spends
+// all its iterations.
+class TooSoftTangent : public NonlinearProblem {
+ public:
+  TooSoftTangent(NonlinearProblem& inner, double factor) : inner_(inner), factor_(factor) {}
+  int size() const override { return inner_.size(); }
+  void begin_step(double time, double dt) override { inner_.begin_step(time, dt); }
+  EvaluationStatus evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& residual,
+                            SparseMatrix* tangent) override {
+    const EvaluationStatus status = inner_.evaluate(u, residual, tangent);
+    if (tangent != nullptr) {
+      *tangent *= 1.0 / factor_;
+    }
+    return status;
+  }
+  void commit_step(const Eigen::VectorXd& u) override { inner_.commit_step(u); }
+
+ private:
+  NonlinearProblem& inner_;
+  double factor_;
+};
+
+TEST(Newton, ConsecutiveShortStepsStopTheSolveAsStalled) {
+  testing::ReactionDiffusionProblem inner(10, 50.0, 2.0);
+  TooSoftTangent problem(inner, 500.0);
+  NewtonSettings settings;
+  settings.max_short_steps = 4;
+  NewtonSolver newton(settings);
+  // From near the solution, where the problem is nearly linear.
+  const Eigen::VectorXd start = 0.9 * inner.exact();
+  Eigen::VectorXd u = start;
+  const NewtonResult stalled = newton.solve(problem, u);
+  print_history(stalled);
+  EXPECT_EQ(stalled.stop, NewtonStop::Stalled);
+  // The first short step took |r| to 9 % of r_0 (the first correction's 1/512 happens to be
+  // about the exact one): progress, so the window of four that stalls is iterations 2-5.
+  EXPECT_EQ(stalled.iterations, settings.max_short_steps + 1);
+  for (const NewtonIteration& it : stalled.history) {
+    EXPECT_LE(it.step_length, settings.short_step);
+  }
+  EXPECT_NE(
+      stalled.message.find("iteration 5: the last 4 line searches took steps of 6.250e-02 or less"),
+      std::string::npos)
+      << stalled.message;
+
+  NewtonSettings patient = settings;
+  patient.max_short_steps = 0;  // the default
+  NewtonSolver slow(patient);
+  u = start;
+  const NewtonResult spent = slow.solve(problem, u);
+  EXPECT_EQ(spent.stop, NewtonStop::MaxIterations);
+  EXPECT_EQ(spent.iterations, patient.max_iterations);
+
+  // Short steps that halve |r| between them are progress, not a stall: with the tangent 20 times
+  // too soft the line search takes 1/16 of each correction and |r| falls by 75 % an iteration;
+  // the solve converges, linearly.
+  testing::ReactionDiffusionProblem inner_fine(10, 50.0, 2.0);
+  TooSoftTangent less_soft(inner_fine, 20.0);
+  u = start;
+  const NewtonResult linear = newton.solve(less_soft, u);
+  print_history(linear);
+  EXPECT_TRUE(linear.converged) << linear.message;
+  EXPECT_GT(linear.iterations, settings.max_short_steps);
+  EXPECT_LE(linear.history[settings.max_short_steps].step_length, settings.short_step);
 }
 
 TEST(Newton, ReportsWhyItStopped) {

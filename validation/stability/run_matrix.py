@@ -349,7 +349,12 @@ def read_cell(out_dir, proc):
     row["iterations_per_step"] = s["newton_iterations"] / s["steps"] if s["steps"] else None
     row["step_cuts"] = len(s["step_cuts"])
     row["min_rcond"] = (s.get("linear_solver_statistics") or {}).get("min_rcond")
-    row["lu_fallbacks"] = (s.get("linear_solver_statistics") or {}).get("lu_fallbacks")
+    ls = s.get("linear_solver_statistics") or {}
+    row["lu_fallbacks"] = ls.get("lu_fallbacks")
+    # Cholesky failures: the tangents found indefinite, whatever the response (the LU fallbacks of
+    # runs before [solver] indefinite_tangent, 2026-12-05, counted the same).
+    row["indefinite_tangents"] = ls.get("cholesky_failures")
+    row["shifted_factorizations"] = ls.get("shifted_factorizations")
     mj = s.get("min_jacobian")
     row["min_J"] = mj["value"] if mj else None
     vi, vf = s.get("volume_initial_m3"), s.get("volume_final_m3")
@@ -392,7 +397,8 @@ def clear_failure(row):
 
 
 FIELDS = ["base", "axis", "cell", "formulation", "status", "clear", "reason", "steps",
-          "newton_iterations", "iterations_per_step", "step_cuts", "lu_fallbacks", "min_rcond",
+          "newton_iterations", "iterations_per_step", "step_cuts", "lu_fallbacks",
+          "indefinite_tangents", "shifted_factorizations", "min_rcond",
           "min_J", "volume_change", "max_displacement", "wall_seconds", "time_reached", "time_end", "dofs", "exit",
           "stopped", "hung", "nan_in_outputs", "solution_steps"]
 

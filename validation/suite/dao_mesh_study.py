@@ -16,11 +16,12 @@ and writes OUT/dao_mesh_study.md with these tables:
 
 * the end's y against time (probes.csv, interpolated; "." past the last converged step);
 * u_y across the width at four heights (the mean over the tessellation or mesh points within
-  0.5 mm of the height, in 2 mm bins of x): the fan's cupping, and whether it wrinkles.
+  0.5 mm of the height, in 2 mm bins of x): the fan's cupping, and whether it wrinkles;
+* the Newton and linear-solver work of each run (summary.json).
 
 Usage: /usr/bin/python3 validation/suite/dao_mesh_study.py [--out OUT] [--jobs N] [--reuse]
        [--meshes iga:3,15,7 iga:3,15,3:1,0,2 tet:0.00075 tet:0.00075:v0,0.0003,0.002 ...]
-       [--jaw clamped|sliding]
+       [--jaw clamped|sliding] [--indefinite-tangent lu|shift|cut] [--stall-iterations N]
 A mesh is iga:KNOT_INSERTION[:DEGREE_ELEVATION] or tet:ELEMENT_SIZE[:FACE,SIZE,DISTANCE] (one
 [[tetrahedra.refine]]); the scene's own values where a part is left out.
 The default meshes are those of the README table (about 3 h on one core; --jobs 2 halves it).
@@ -28,6 +29,9 @@ The default meshes are those of the README table (about 3 h on one core; --jobs 
 free to widen as the fibres next to it shorten) and two point constraints against the rigid
 motions left: x and y at the face's centre, y at the end of its major axis (the stand-in's section
 frame, below); the scenes and runs are named dao_sliding_*.
+--indefinite-tangent and --stall-iterations set the [solver] keys of those names (README.md,
+"Solver"; the scenes' defaults lu and 4 when left out) and add _shift, _cut, _stall0 ... to the
+scene names; the report's last table is the Newton and linear-solver work of each run.
 """
 import argparse
 import concurrent.futures
@@ -45,6 +49,8 @@ BEFORE_END = np.array([0.0035, 0.004, 0.029])  # the centreline's last two secti
 HALF_WIDTH, HALF_THICKNESS = 0.0015, 0.001  # geometry/shapes.cpp, depressor_anguli_oris
 JAW_CHORD = np.array([0.0010, 0.0025, 0.0070])  # first section's chord, and its half width
 JAW_HALF_WIDTH = 0.0150
+# Scene-name parts of the [solver] keys --indefinite-tangent and --stall-iterations set.
+SOLVER_SUFFIX = {"indefinite_tangent": "", "stall_iterations": "stall"}
 CLAMPED_JAW = '[[boundary]]\nface = "v0"                       # the origin on the jaw\ntype = "fixed"\n'
 # The point constraints catch the control points there (IGA: the collapsed axis, the section's
 # interpolated corner) or the mesh nodes within 0.4 mm (tetrahedra: gmsh need not put one there).
@@ -92,10 +98,11 @@ def jaw_major_axis_end():
     return JAW_HALF_WIDTH * section_frame(JAW_CHORD)[0]
 
 
-def scene(mesh, folder, jaw="clamped"):
+def scene(mesh, folder, jaw="clamped", solver=()):
     """Scene copy for 'iga:i,j,k[:a,b,c]' (knot insertion, degree elevation) or
     'tet:h[:face,size,distance]' (element size, m; one local refinement), with the jaw face
-    clamped (the committed scenes) or sliding (module doc); returns its path."""
+    clamped (the committed scenes) or sliding (module doc) and the [solver] keys of solver, a
+    sequence of (key, TOML value) pairs; returns its path."""
     kind, value, *extra = mesh.split(":")
     base = os.path.join(ROOT, "examples", "dao", "contract.toml" if kind == "iga" else
                         "contract-tet.toml")
@@ -122,12 +129,17 @@ def scene(mesh, folder, jaw="clamped"):
         tolerance = "1e-06" if kind == "iga" else "0.0004"
         text = text.replace(CLAMPED_JAW, SLIDING_JAW % (tolerance, *jaw_major_axis_end(), tolerance))
     text = re.sub(r"times = \[[^\]]*\]", "times = [0.2]", text)
+    if "\n[solver]\n" not in text:
+        raise SystemExit("dao_mesh_study: no [solver] table in %s" % base)
+    text = text.replace("\n[solver]\n", "\n[solver]\n" + "".join(
+        "%s = %s\n" % (key, value) for key, value in solver))
     for name, p in end_face_points().items():
         for c in "xyz":
             text += ('\n[[probe]]\nname = "end_%s_%s"\nkind = "point_displacement"\n'
                      'point = [%.17g, %.17g, %.17g]\ncomponent = "%s"\n' % (name, c, *p, c))
-    path = os.path.join(folder, "dao_%s%s.toml" % ("sliding_" if jaw == "sliding" else "",
-                                                     re.sub(r"[:,]", "_", mesh)))
+    suffix = "".join("_" + SOLVER_SUFFIX[key] + value.strip('"') for key, value in solver)
+    path = os.path.join(folder, "dao_%s%s%s.toml" % ("sliding_" if jaw == "sliding" else "",
+                                                       re.sub(r"[:,]", "_", mesh), suffix))
     with open(path, "w") as f:
         f.write(text)
     return path
@@ -204,9 +216,16 @@ def main():
     parser.add_argument("--reuse", action="store_true")
     parser.add_argument("--meshes", nargs="+", default=DEFAULT_MESHES)
     parser.add_argument("--jaw", choices=["clamped", "sliding"], default="clamped")
+    parser.add_argument("--indefinite-tangent", choices=["lu", "shift", "cut"])
+    parser.add_argument("--stall-iterations", type=int)
     args = parser.parse_args()
+    solver = []
+    if args.indefinite_tangent:
+        solver.append(("indefinite_tangent", '"%s"' % args.indefinite_tangent))
+    if args.stall_iterations is not None:
+        solver.append(("stall_iterations", str(args.stall_iterations)))
     os.makedirs(args.out, exist_ok=True)
-    paths = {m: scene(m, args.out, args.jaw) for m in args.meshes}
+    paths = {m: scene(m, args.out, args.jaw, solver) for m in args.meshes}
     dirs = {m: os.path.splitext(p)[0] for m, p in paths.items()}
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         results = dict(zip(args.meshes, pool.map(
@@ -235,6 +254,16 @@ def main():
     history = ["| mesh | " + " | ".join("t = %g s" % t for t in HISTORY_TIMES) + " |",
                "|---" * (len(HISTORY_TIMES) + 1) + "|"]
     history += ["| %s | " % m + " | ".join(y_history(dirs[m])) + " |" for m in args.meshes]
+    work = ["| mesh | steps | Newton iterations | step cuts | Cholesky failures | LU fallbacks (s) | "
+            "shifted factorisations (largest tau, s) | wall |", "|---" * 8 + "|"]
+    for m in args.meshes:
+        s = results[m]["summary"]
+        ls = s.get("linear_solver_statistics", {})
+        work.append("| %s | %d | %d | %d | %d | %d (%.0f s) | %d (%.0e, %.0f s) | %.0f s |" % (
+            m, s["steps"], s["newton_iterations"], len(s["step_cuts"]), ls.get("cholesky_failures", 0),
+            ls.get("lu_fallbacks", 0), ls.get("lu_seconds", 0.0),
+            ls.get("shifted_factorizations", 0), ls.get("max_shift", 0.0),
+            ls.get("shifted_seconds", 0.0), s["wall_seconds"]["total"]))
     width = []
     for h in WIDTH_HEIGHTS_MM:
         width += ["", "z = %g mm:" % h, "",
@@ -246,7 +275,8 @@ def main():
         f.write("# DAO mouth corner, y at 0.2 s (mm), jaw face %s\n\n" % args.jaw + "\n".join(lines) +
                 "\n\n## u_y on the centreline (mm)\n\n" + "\n".join(profile) +
                 "\n\n## The end's y against time (mm)\n\n" + "\n".join(history) +
-                "\n\n## u_y across the width (mm; x bins in mm)\n" + "\n".join(width) + "\n")
+                "\n\n## u_y across the width (mm; x bins in mm)\n" + "\n".join(width) +
+                "\n\n## Newton and linear-solver work\n\n" + "\n".join(work) + "\n")
     print(report)
 
 
