@@ -121,9 +121,9 @@ void print_indefinite_tangents(const io::RunSummary& s, std::ostream& out) {
     out << stats->value("lu_fallbacks", 0) << " LU factorisations";
     share(stats->value("lu_seconds", 0.0));
   } else if (response == "shift") {
-    out << stats->value("shifted_factorizations", 0)
-        << " shifted Cholesky factorisations, tau up to " << std::setprecision(2)
-        << stats->value("max_shift", 0.0);
+    out << stats->value("shifted_factorizations", 0) << " shifted Cholesky factorisations and "
+        << stats->value("failed_shifts", 0) << " too small shifts, tau up to "
+        << std::setprecision(2) << stats->value("max_shift", 0.0);
     share(stats->value("shifted_seconds", 0.0));
   } else {
     out << "each ended its Newton solve and the step was cut)\n";

@@ -404,6 +404,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
              {"lu_fallbacks", ls.lu_fallbacks},
              {"lu_seconds", ls.time.lu},
              {"shifted_factorizations", ls.shifted_factorizations},
+             {"failed_shifts", ls.failed_shifts},
              {"max_shift", ls.max_shift},
              {"shifted_seconds", ls.time.shifted},
              {"failures", ls.failures},

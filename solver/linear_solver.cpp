@@ -273,7 +273,7 @@ struct LinearSolver::Impl {
         active = LinearMethod::Cholesky;
         return;
       }
-      ++stats.cholesky_failures;
+      ++stats.failed_shifts;
       if (!status.not_positive_definite) {
         report.message = cholesky_message + "; then, shifted by " + format_number(tau) +
                          " mean|K_ii|: " + status.message;

@@ -80,10 +80,13 @@ struct LinearSolverStatistics {
   int lu_symbolic_analyses = 0;     // UMFPACK analyses (one per pattern that needed LU)
   int pattern_changes = 0;          // factorize() calls whose pattern differed from the last
   int cholesky_factorizations = 0;  // attempts, successful or not
-  int cholesky_failures = 0;        // not positive definite (or another CHOLMOD failure)
+  // Of the matrices themselves, not of their shifted copies: not positive definite (or another
+  // CHOLMOD failure), so with Lu or Shift the number of indefinite tangents met.
+  int cholesky_failures = 0;
   int lu_factorizations = 0;
   int lu_fallbacks = 0;            // LU factorisations made because Cholesky failed
   int shifted_factorizations = 0;  // successful Cholesky factorisations of K + beta I
+  int failed_shifts = 0;           // attempts of K + beta I that failed (beta too small)
   double max_shift = 0.0;          // the largest tau of those
   int failures = 0;                // factorize() calls that produced no usable factorisation
   int solves = 0;

@@ -447,6 +447,7 @@ TEST_F(RunCli, IndefiniteTangentResponsesReachTheSameStretchOrCut) {
   EXPECT_EQ(lu_stats["indefinite_tangent"], "lu");
   EXPECT_GE(lu_stats["lu_fallbacks"].get<int>(), 1);
   EXPECT_EQ(lu_stats["shifted_factorizations"].get<int>(), 0);
+  EXPECT_EQ(lu_stats["cholesky_failures"], lu_stats["lu_fallbacks"]);
   EXPECT_NE(lu_run.out.find("indefinite tangents: Cholesky failed"), std::string::npos)
       << lu_run.out;
 
@@ -457,6 +458,9 @@ TEST_F(RunCli, IndefiniteTangentResponsesReachTheSameStretchOrCut) {
   EXPECT_EQ(shift_stats["lu_factorizations"].get<int>(), 0);
   EXPECT_GE(shift_stats["shifted_factorizations"].get<int>(), 1);
   EXPECT_GT(shift_stats["max_shift"].get<double>(), 0.0);
+  // Each indefinite tangent was replaced by one shifted factorisation, after failed smaller shifts.
+  EXPECT_EQ(shift_stats["cholesky_failures"], shift_stats["shifted_factorizations"]);
+  EXPECT_GE(shift_stats["failed_shifts"].get<int>(), 1);
   const Table newton = read_csv(shift_out / "newton.csv");
   int shifted_rows = 0;
   for (const auto& row : newton.rows) {

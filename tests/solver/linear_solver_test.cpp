@@ -204,6 +204,9 @@ TEST(LinearSolver, ShiftResponseFactorisesTheFirstSufficientShiftAndRelaxesIt) {
   EXPECT_FALSE(solver.last_report().fell_back);
   const LinearSolverStatistics& stats = solver.statistics();
   EXPECT_EQ(stats.shifted_factorizations, 2);
+  // Two indefinite matrices; their failed shifts 1e-9 ... 1e-2 and then 1e-2 are counted apart.
+  EXPECT_EQ(stats.cholesky_failures, 2);
+  EXPECT_EQ(stats.failed_shifts, 8 + 1);
   EXPECT_DOUBLE_EQ(stats.max_shift, report.shift);
   EXPECT_EQ(stats.lu_factorizations, 0);
   EXPECT_EQ(stats.failures, 0);
@@ -288,7 +291,8 @@ TEST(LinearSolver, WithoutFallbackAnIndefiniteMatrixIsAFailure) {
   LinearSolver solver(settings);
   const FactorizationReport report = solver.factorize(k);
   EXPECT_FALSE(report.ok);
-  EXPECT_NE(report.message.find("fail, no LU or shifted factorisation tried"), std::string::npos) << report.message;
+  EXPECT_NE(report.message.find("fail, no LU or shifted factorisation tried"), std::string::npos)
+      << report.message;
   Eigen::VectorXd x;
   EXPECT_THROW(solver.solve(Eigen::Vector2d(1.0, 0.0), x), std::logic_error);
   EXPECT_EQ(solver.statistics().failures, 1);
