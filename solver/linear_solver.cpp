@@ -237,15 +237,7 @@ struct LinearSolver::Impl {
   // Cholesky of a + beta I, beta = tau mean|a_ii|, for growing tau (the header's Shift); fills
   // report. The mean of the diagonal makes tau dimensionless: the tangent's own stiffness scale.
   void factorize_shifted(const SparseMatrix& a, const std::string& cholesky_message) {
-    double diagonal_sum = 0.0;
-    for (int j = 0; j < a.cols(); ++j) {
-      for (int k = a.outerIndexPtr()[j]; k < a.outerIndexPtr()[j + 1]; ++k) {
-        if (a.innerIndexPtr()[k] == j) {
-          diagonal_sum += std::abs(a.valuePtr()[k]);
-        }
-      }
-    }
-    const double scale = diagonal_sum / static_cast<double>(a.cols());
+    const double scale = a.diagonal().cwiseAbs().mean();
     report.fell_back = true;
     if (!(scale > 0.0)) {
       report.message = cholesky_message + "; no shift possible (the diagonal is zero)";
