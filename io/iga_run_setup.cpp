@@ -147,6 +147,14 @@ std::vector<double> knots_not_yet_there(const geometry::NurbsVolume& volume, int
 // monotonically). Each cut becomes a knot of multiplicity p, so the pieces meet at C^0 element
 // faces, as the parts of a mesh do. A knot already at the cut to round-off (knot_near) is raised
 // in place, so no span of round-off length is made.
+// The knot raised to the given multiplicity in direction d (inserted as often as it is missing;
+// a knot already of that multiplicity or more is left alone).
+geometry::NurbsVolume with_multiplicity(geometry::NurbsVolume volume, int d, double knot,
+                                        int multiplicity) {
+  const int missing = multiplicity - volume.knots(d).multiplicity(knot);
+  return missing > 0 ? geometry::insert_knot(volume, d, knot, missing) : volume;
+}
+
 geometry::NurbsVolume with_c0_segment_cuts(geometry::NurbsVolume volume,
                                            const iga::FibreSpec& spec) {
   if (spec.mode != iga::FibreSpec::Mode::polyline || spec.cut_direction < 0)
@@ -154,9 +162,33 @@ geometry::NurbsVolume with_c0_segment_cuts(geometry::NurbsVolume volume,
   const int d = spec.cut_direction;
   for (double cut : spec.cuts) {
     cut = knot_near(volume, d, cut).value_or(cut);
-    const int missing = volume.degree(d) - volume.knots(d).multiplicity(cut);
-    if (missing > 0)
-      volume = geometry::insert_knot(volume, d, cut, missing);
+    const int p = volume.degree(d);
+    volume = with_multiplicity(std::move(volume), d, cut, p);
+  }
+  return volume;
+}
+
+// [geometry.refine] continuity = c: every interior knot raised to multiplicity p - c, so the basis
+// is C^c across every element face (c = 0: the Lagrange FE space of degree p on the same elements;
+// the geometry and the elements do not change, knot insertion is exact). Throws
+// std::invalid_argument when c is not below the degree in some direction.
+geometry::NurbsVolume with_continuity(geometry::NurbsVolume volume, int continuity,
+                                      const SceneFrame& frame) {
+  std::string degrees;
+  for (int d = 0; d < 3; ++d)
+    degrees += (d ? ", " : "") + std::to_string(volume.degree(frame.solid(Direction(d))));
+  for (int d = 0; d < 3; ++d) {
+    const int s = frame.solid(Direction(d));
+    const int multiplicity = volume.degree(s) - continuity;
+    if (multiplicity < 1) {
+      throw std::invalid_argument("[geometry.refine] continuity = " + std::to_string(continuity) +
+                                  " must be below the degree in every direction; the refined "
+                                  "solid has degree (" +
+                                  degrees + ") in u, v, w");
+    }
+    const std::vector<double> breaks = volume.knots(s).breakpoints();
+    for (std::size_t i = 1; i + 1 < breaks.size(); ++i)
+      volume = with_multiplicity(std::move(volume), s, breaks[i], multiplicity);
   }
   return volume;
 }
@@ -203,6 +235,8 @@ IgaModel build_iga_model(const Scene& scene, int threads) {
     if (!fresh.empty())
       volume = geometry::refine_knots(volume, s, fresh);
   }
+  if (g.refine.continuity)
+    volume = with_continuity(std::move(volume), *g.refine.continuity, frame);
   model.fibre_spec = fibre_spec(scene.fibres, frame, volume);
   model.space =
       std::make_unique<iga::Space>(with_c0_segment_cuts(std::move(volume), model.fibre_spec));

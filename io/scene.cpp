@@ -128,6 +128,11 @@ const char* to_string(ProbeKind k) {
 // ---- validation ----------------------------------------------------------------------------
 
 void RefinementSettings::validate() const {
+  if (continuity) {
+    const std::string c = range_violation(*continuity, Range::closed(0, 9));
+    if (!c.empty())
+      throw InvalidSetting("continuity", c);
+  }
   // Degrees beyond ~10 and more than 1000 knots per span are typing mistakes, not refinement.
   for (int i = 0; i < 3; ++i) {
     const std::string element = "element " + std::to_string(i + 1) + " ";

@@ -39,6 +39,13 @@ struct RefinementSettings {
   // already a knot of the refined solid is not inserted again (iga_run_setup.cpp), so a graded
   // mesh can be listed whole.
   std::array<std::vector<double>, 3> knots{};
+  // When set, every interior knot is raised to multiplicity p - continuity in each direction after
+  // the insertions above, so the basis is only C^continuity across element faces. continuity = 0
+  // gives C^0 element faces: the Lagrange finite-element space of the same degree on the same
+  // exact geometry and elements (p-refinement instead of k-refinement, Cottrell et al. 2009,
+  // §2.1.4), for comparing the smooth spline solution with a classical FE one. Must be below the
+  // degree in every direction (checked when the solid is refined).
+  std::optional<int> continuity;
   void validate() const;
 };
 

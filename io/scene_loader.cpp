@@ -71,6 +71,7 @@ GeometrySettings read_geometry(SceneTable t, const std::filesystem::path& base) 
     if (auto k = r->optional_integers("knot_insertion", 3, allowed)) {
       g.refine.knot_insertion = {(*k)[0], (*k)[1], (*k)[2]};
     }
+    g.refine.continuity = r->optional_integer("continuity", Range::non_negative());
     if (auto knots = r->optional_table("knots")) {
       for (Direction d : {Direction::u, Direction::v, Direction::w}) {
         if (auto t = knots->optional_numbers(to_string(d), 0, Range::open(0.0, 1.0)))

@@ -1,10 +1,13 @@
 // A scene's explicit knots ([geometry.refine] knots) on a real example solid: they add element
 // faces where the solid has none, and a value that is already a knot of the refined solid is not
-// inserted again (which would lower the continuity there, not refine).
+// inserted again (which would lower the continuity there, not refine). [geometry.refine]
+// continuity lowers the continuity on purpose: the same elements and geometry, a C^c basis.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
+#include <string>
 
 #include "iga/space.hpp"
 #include "io/iga_run_setup.hpp"
@@ -40,6 +43,53 @@ TEST(SceneKnots, KnotsAlreadyInTheSolidAreLeftAsTheyAre) {
   const double added_reversed = lo + 0.6 * (hi - lo);
   EXPECT_EQ(knots.multiplicity(added) + knots.multiplicity(added_reversed), 1);
   EXPECT_EQ(model.space->num_elements(), base.space->num_elements() / 6 * 7);  // 6 -> 7 along
+}
+
+// continuity = 0 raises every interior knot to multiplicity p in every direction: the elements and
+// the geometry (knot insertion is exact) stay, and the unknowns become those of a Lagrange mesh of
+// degree p on those elements (a node at every multiple of 1/p of each span, shared across faces).
+TEST(SceneKnots, ContinuityZeroGivesC0ElementFacesOnTheSameElementsAndGeometry) {
+  const IgaModel smooth = build_iga_model(dao_scene(), 1);
+  Scene c0_scene = dao_scene();
+  c0_scene.geometry.refine.continuity = 0;
+  const IgaModel c0 = build_iga_model(c0_scene, 1);
+
+  const geometry::NurbsVolume& a = smooth.space->volume();
+  const geometry::NurbsVolume& b = c0.space->volume();
+  EXPECT_EQ(c0.space->num_elements(), smooth.space->num_elements());
+  int lagrange_points = 1;
+  for (int d = 0; d < 3; ++d) {
+    ASSERT_EQ(b.degree(d), a.degree(d));
+    const std::vector<double> breaks = b.knots(d).breakpoints();
+    EXPECT_EQ(breaks, a.knots(d).breakpoints()) << "direction " << d;
+    for (std::size_t i = 1; i + 1 < breaks.size(); ++i)
+      EXPECT_EQ(b.knots(d).multiplicity(breaks[i]), b.degree(d)) << "knot " << breaks[i];
+    lagrange_points *= b.degree(d) * static_cast<int>(breaks.size() - 1) + 1;
+  }
+  EXPECT_EQ(b.num_control_points(), lagrange_points);
+  double largest = 0.0;
+  for (double s : {0.0, 0.13, 0.5, 0.77, 1.0}) {
+    for (double t : {0.0, 0.31, 0.62, 1.0}) {
+      for (double r : {0.05, 0.5, 0.93}) {
+        const Eigen::Vector3d xi(s, t, r);
+        largest = std::max(largest, (b.evaluate(xi) - a.evaluate(xi)).norm());
+      }
+    }
+  }
+  EXPECT_LT(largest, 1e-15);  // m; the DAO is 35 mm long
+}
+
+TEST(SceneKnots, ContinuityNotBelowTheDegreeIsRefusedNamingTheDegrees) {
+  Scene scene = dao_scene();
+  scene.geometry.refine.continuity = 2;  // the DAO's solid is of degree (2, 3, 2)
+  try {
+    build_iga_model(scene, 1);
+    FAIL() << "continuity = 2 accepted on a solid of degree 2";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "[geometry.refine] continuity = 2 must be below the degree in every direction; the "
+              "refined solid has degree (2, 3, 2) in u, v, w");
+  }
 }
 
 }  // namespace

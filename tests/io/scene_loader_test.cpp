@@ -480,6 +480,21 @@ TEST_F(SceneLoader, ConcentratedKnotsAreReadAndChecked) {
   EXPECT_NE(e3.message().find("unknown key"), std::string::npos) << e3.message();
 }
 
+TEST_F(SceneLoader, ContinuityIsReadAndChecked) {
+  const auto with_continuity = [this](const std::string& value) {
+    std::string text = minimal();
+    text.insert(text.find("[material]"), "[geometry.refine]\ncontinuity = " + value + "\n");
+    return text;
+  };
+  EXPECT_FALSE(parse(minimal()).geometry.refine.continuity.has_value());
+  EXPECT_EQ(parse(with_continuity("0")).geometry.refine.continuity, 0);
+  const std::string negative = with_continuity("-1");
+  const SceneError e = error(negative);
+  EXPECT_EQ(e.line(), line_containing(negative, "continuity ="));
+  EXPECT_NE(e.message().find("'continuity'"), std::string::npos) << e.message();
+  EXPECT_NE(error(with_continuity("0.5")).message().find("integer"), std::string::npos);
+}
+
 TEST_F(SceneLoader, TimeAndOutputConsistency) {
   std::string dt = minimal();
   dt.replace(dt.find("dt = 0.005"), 10, "dt = 0.5");

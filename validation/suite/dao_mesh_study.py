@@ -22,6 +22,7 @@ and writes OUT/dao_mesh_study.md with these tables:
 Usage: /usr/bin/python3 validation/suite/dao_mesh_study.py [--out OUT] [--jobs N] [--reuse]
        [--meshes iga:3,15,7 iga:3,15,3:1,0,2 tet:0.00075 tet:0.00075:v0,0.0003,0.002 ...]
        [--jaw clamped|sliding] [--indefinite-tangent lu|shift|cut] [--stall-iterations N]
+       [--material KEY=VALUE ...] [--constant-fibres X Y Z] [--continuity C]
 A mesh is iga:KNOT_INSERTION[:DEGREE_ELEVATION] or tet:ELEMENT_SIZE[:FACE,SIZE,DISTANCE] (one
 [[tetrahedra.refine]]); the scene's own values where a part is left out.
 The default meshes are those of the README table (about 3 h on one core; --jobs 2 halves it).
@@ -32,6 +33,10 @@ frame, below); the scenes and runs are named dao_sliding_*.
 --indefinite-tangent and --stall-iterations set the [solver] keys of those names (README.md,
 "Solver"; the scenes' defaults lu and 4 when left out) and add _shift, _cut, _stall0 ... to the
 scene names; the report's last table is the Newton and linear-solver work of each run.
+The variants of the 2026-12-05 section: --material D=1e-5 adds a [material.parameters] table
+(tang2009 parameters; _D1e-5 in the names), --constant-fibres 0 0 1 replaces the NURBS isocurve
+fibres by one direction (_fibre_0_0_1), --continuity 0 gives the IGA meshes C^0 element faces
+([geometry.refine] continuity, the Lagrange space on the same elements; _C0).
 """
 import argparse
 import concurrent.futures
@@ -98,11 +103,17 @@ def jaw_major_axis_end():
     return JAW_HALF_WIDTH * section_frame(JAW_CHORD)[0]
 
 
-def scene(mesh, folder, jaw="clamped", solver=()):
+ISOCURVE_FIBRES = '[fibres]\nmode = "isocurve"\ndirection = "v"\n'
+
+
+def scene(mesh, folder, jaw="clamped", solver=(), material=(), fibre_vector=None,
+          continuity=None):
     """Scene copy for 'iga:i,j,k[:a,b,c]' (knot insertion, degree elevation) or
     'tet:h[:face,size,distance]' (element size, m; one local refinement), with the jaw face
-    clamped (the committed scenes) or sliding (module doc) and the [solver] keys of solver, a
-    sequence of (key, TOML value) pairs; returns its path."""
+    clamped (the committed scenes) or sliding (module doc), the [solver] keys of solver and the
+    [material] parameters of material, each a sequence of (key, TOML value) pairs, and the
+    NURBS isocurve fibres or, with fibre_vector, one constant fibre direction; IGA meshes with
+    continuity set get [geometry.refine] continuity (0: C^0 element faces); returns its path."""
     kind, value, *extra = mesh.split(":")
     base = os.path.join(ROOT, "examples", "dao", "contract.toml" if kind == "iga" else
                         "contract-tet.toml")
@@ -115,6 +126,8 @@ def scene(mesh, folder, jaw="clamped", solver=()):
             text, m = re.subn(r"degree_elevation = \[[^\]]*\]", "degree_elevation = [%s]" %
                               extra[0].replace(",", ", "), text)
             n = min(n, m)
+        if continuity is not None:
+            text = text.replace("\n[material]\n", "continuity = %d\n\n[material]\n" % continuity)
     else:
         text, n = re.subn(r"element_size = [0-9.e-]+", "element_size = %s" % value, text)
         if extra:
@@ -133,11 +146,28 @@ def scene(mesh, folder, jaw="clamped", solver=()):
         raise SystemExit("dao_mesh_study: no [solver] table in %s" % base)
     text = text.replace("\n[solver]\n", "\n[solver]\n" + "".join(
         "%s = %s\n" % (key, value) for key, value in solver))
+    if material:
+        # A [material.parameters] table of its own, before the next table after [material].
+        if "[material.parameters]" in text or "\n[fibres]\n" not in text:
+            raise SystemExit("dao_mesh_study: cannot add [material.parameters] to %s" % base)
+        text = text.replace("\n[fibres]\n", "\n[material.parameters]\n" + "".join(
+            "%s = %s\n" % (key, value) for key, value in material) + "\n[fibres]\n")
+    if fibre_vector is not None:
+        if ISOCURVE_FIBRES not in text:
+            raise SystemExit("dao_mesh_study: no isocurve [fibres] table in %s" % base)
+        text = text.replace(ISOCURVE_FIBRES, '[fibres]\nmode = "constant"\nvector = [%s]\n' %
+                            ", ".join("%.12g" % c for c in fibre_vector))
     for name, p in end_face_points().items():
         for c in "xyz":
             text += ('\n[[probe]]\nname = "end_%s_%s"\nkind = "point_displacement"\n'
                      'point = [%.17g, %.17g, %.17g]\ncomponent = "%s"\n' % (name, c, *p, c))
     suffix = "".join("_" + SOLVER_SUFFIX[key] + value.strip('"') for key, value in solver)
+    suffix += "".join("_%s%s" % (key, re.sub(r"[^A-Za-z0-9-]", "p", value))
+                      for key, value in material)
+    if continuity is not None and kind == "iga":
+        suffix += "_C%d" % continuity
+    if fibre_vector is not None:
+        suffix += "_fibre_" + "_".join(re.sub(r"[^A-Za-z0-9-]", "p", "%g" % c) for c in fibre_vector)
     path = os.path.join(folder, "dao_%s%s%s.toml" % ("sliding_" if jaw == "sliding" else "",
                                                        re.sub(r"[:,]", "_", mesh), suffix))
     with open(path, "w") as f:
@@ -218,14 +248,28 @@ def main():
     parser.add_argument("--jaw", choices=["clamped", "sliding"], default="clamped")
     parser.add_argument("--indefinite-tangent", choices=["lu", "shift", "cut"])
     parser.add_argument("--stall-iterations", type=int)
+    parser.add_argument("--material", nargs="+", default=[], metavar="KEY=VALUE",
+                        help="tang2009 parameters to override in every scene, e.g. D=1e-5")
+    parser.add_argument("--constant-fibres", nargs=3, type=float, metavar=("X", "Y", "Z"),
+                        help="one fibre direction everywhere instead of the NURBS isocurves")
+    parser.add_argument("--continuity", type=int,
+                        help="IGA meshes: [geometry.refine] continuity (0: C^0 element faces, the "
+                        "Lagrange FE space on the same elements)")
     args = parser.parse_args()
+    material = []
+    for item in args.material:
+        key, sep, value = item.partition("=")
+        if not sep or not key or not value:
+            parser.error("--material expects KEY=VALUE, got '%s'" % item)
+        material.append((key, value))
     solver = []
     if args.indefinite_tangent:
         solver.append(("indefinite_tangent", '"%s"' % args.indefinite_tangent))
     if args.stall_iterations is not None:
         solver.append(("stall_iterations", str(args.stall_iterations)))
     os.makedirs(args.out, exist_ok=True)
-    paths = {m: scene(m, args.out, args.jaw, solver) for m in args.meshes}
+    paths = {m: scene(m, args.out, args.jaw, solver, material, args.constant_fibres,
+                      args.continuity) for m in args.meshes}
     dirs = {m: os.path.splitext(p)[0] for m, p in paths.items()}
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         results = dict(zip(args.meshes, pool.map(
