@@ -141,12 +141,6 @@ std::vector<double> knots_not_yet_there(const geometry::NurbsVolume& volume, int
   return fresh;
 }
 
-// "Method 1" segments (fibre_directions.hpp) are pieces of different fibre direction meeting at
-// isoparametric surfaces: the active stress jumps there and the strain has a kink, which a basis
-// that is C^1 or smoother across the cut cannot follow (the error then decays slowly and not
-// monotonically). Each cut becomes a knot of multiplicity p, so the pieces meet at C^0 element
-// faces, as the parts of a mesh do. A knot already at the cut to round-off (knot_near) is raised
-// in place, so no span of round-off length is made.
 // The knot raised to the given multiplicity in direction d (inserted as often as it is missing;
 // a knot already of that multiplicity or more is left alone).
 geometry::NurbsVolume with_multiplicity(geometry::NurbsVolume volume, int d, double knot,
@@ -155,6 +149,12 @@ geometry::NurbsVolume with_multiplicity(geometry::NurbsVolume volume, int d, dou
   return missing > 0 ? geometry::insert_knot(volume, d, knot, missing) : volume;
 }
 
+// "Method 1" segments (fibre_directions.hpp) are pieces of different fibre direction meeting at
+// isoparametric surfaces: the active stress jumps there and the strain has a kink, which a basis
+// that is C^1 or smoother across the cut cannot follow (the error then decays slowly and not
+// monotonically). Each cut becomes a knot of multiplicity p, so the pieces meet at C^0 element
+// faces, as the parts of a mesh do. A knot already at the cut to round-off (knot_near) is raised
+// in place, so no span of round-off length is made.
 geometry::NurbsVolume with_c0_segment_cuts(geometry::NurbsVolume volume,
                                            const iga::FibreSpec& spec) {
   if (spec.mode != iga::FibreSpec::Mode::polyline || spec.cut_direction < 0)
