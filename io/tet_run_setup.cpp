@@ -193,7 +193,8 @@ TetModel build_tet_model(const Scene& scene, int threads) {
   }
   if (g.refine.degree_elevation != std::array<int, 3>{0, 0, 0} ||
       g.refine.knot_insertion != std::array<int, 3>{0, 0, 0} ||
-      !(g.refine.knots[0].empty() && g.refine.knots[1].empty() && g.refine.knots[2].empty())) {
+      !(g.refine.knots[0].empty() && g.refine.knots[1].empty() && g.refine.knots[2].empty()) ||
+      g.refine.continuity) {
     model.notes.push_back(
         "[geometry.refine] does not apply to tetrahedra (the mesh is set by "
         "[tetrahedra]); the NURBS solid is used unrefined for fibres and faces");
