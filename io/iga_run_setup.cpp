@@ -141,14 +141,6 @@ std::vector<double> knots_not_yet_there(const geometry::NurbsVolume& volume, int
   return fresh;
 }
 
-// The knot raised to the given multiplicity in direction d (inserted as often as it is missing;
-// a knot already of that multiplicity or more is left alone).
-geometry::NurbsVolume with_multiplicity(geometry::NurbsVolume volume, int d, double knot,
-                                        int multiplicity) {
-  const int missing = multiplicity - volume.knots(d).multiplicity(knot);
-  return missing > 0 ? geometry::insert_knot(volume, d, knot, missing) : volume;
-}
-
 // "Method 1" segments (fibre_directions.hpp) are pieces of different fibre direction meeting at
 // isoparametric surfaces: the active stress jumps there and the strain has a kink, which a basis
 // that is C^1 or smoother across the cut cannot follow (the error then decays slowly and not
@@ -162,8 +154,9 @@ geometry::NurbsVolume with_c0_segment_cuts(geometry::NurbsVolume volume,
   const int d = spec.cut_direction;
   for (double cut : spec.cuts) {
     cut = knot_near(volume, d, cut).value_or(cut);
-    const int p = volume.degree(d);
-    volume = with_multiplicity(std::move(volume), d, cut, p);
+    const int missing = volume.degree(d) - volume.knots(d).multiplicity(cut);
+    if (missing > 0)
+      volume = geometry::insert_knot(volume, d, cut, missing);
   }
   return volume;
 }
@@ -186,9 +179,17 @@ geometry::NurbsVolume with_continuity(geometry::NurbsVolume volume, int continui
                                   "solid has degree (" +
                                   degrees + ") in u, v, w");
     }
-    const std::vector<double> breaks = volume.knots(s).breakpoints();
+    // All missing copies at once: one refinement pass per direction, not one per knot.
+    const geometry::KnotVector& knots = volume.knots(s);
+    const std::vector<double> breaks = knots.breakpoints();
+    std::vector<double> missing;
     for (std::size_t i = 1; i + 1 < breaks.size(); ++i)
-      volume = with_multiplicity(std::move(volume), s, breaks[i], multiplicity);
+      missing.insert(
+          missing.end(),
+          static_cast<std::size_t>(std::max(0, multiplicity - knots.multiplicity(breaks[i]))),
+          breaks[i]);
+    if (!missing.empty())
+      volume = geometry::refine_knots(volume, s, missing);
   }
   return volume;
 }

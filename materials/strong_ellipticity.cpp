@@ -11,7 +11,7 @@ namespace isomuscle::materials {
 namespace {
 
 // Voigt index of the symmetric pair (I, J) in the order 11, 22, 33, 12, 23, 13.
-int voigt(int i, int j) {
+int voigt_index(int i, int j) {
   if (i == j)
     return i;
   return i + j == 1 ? 3 : (i + j == 3 ? 4 : 5);
@@ -27,7 +27,7 @@ Eigen::Matrix3d acoustic_tensor(const Eigen::Matrix3d& F, const Eigen::Matrix3d&
     for (int K = 0; K < 3; ++K) {
       for (int J = 0; J < 3; ++J) {
         for (int L = 0; L < 3; ++L)
-          B(I, K) += tangent(voigt(I, J), voigt(K, L)) * N[J] * N[L];
+          B(I, K) += tangent(voigt_index(I, J), voigt_index(K, L)) * N[J] * N[L];
       }
     }
   }

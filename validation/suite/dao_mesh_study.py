@@ -103,6 +103,11 @@ def jaw_major_axis_end():
     return JAW_HALF_WIDTH * section_frame(JAW_CHORD)[0]
 
 
+def name_part(value):
+    """A setting's value as part of a scene or run name (a '.' would end the name early)."""
+    return re.sub(r"[^A-Za-z0-9-]", "p", value)
+
+
 ISOCURVE_FIBRES = '[fibres]\nmode = "isocurve"\ndirection = "v"\n'
 
 
@@ -120,14 +125,14 @@ def scene(mesh, folder, jaw="clamped", solver=(), material=(), fibre_vector=None
     text = open(base).read().replace("../geometry/dao.igs",
                                      os.path.join(ROOT, "examples", "geometry", "dao.igs"))
     if kind == "iga":
-        text, n = re.subn(r"knot_insertion = \[[^\]]*\]", "knot_insertion = [%s]" %
-                          value.replace(",", ", "), text)
+        # The line's own comment stays on it; continuity, when set, goes on the next line.
+        text, n = re.subn(r"knot_insertion = \[[^\]]*\]([^\n]*)", lambda m: (
+            "knot_insertion = [%s]%s" % (value.replace(",", ", "), m.group(1)) +
+            ("" if continuity is None else "\ncontinuity = %d" % continuity)), text)
         if extra:
             text, m = re.subn(r"degree_elevation = \[[^\]]*\]", "degree_elevation = [%s]" %
                               extra[0].replace(",", ", "), text)
             n = min(n, m)
-        if continuity is not None:
-            text = text.replace("\n[material]\n", "continuity = %d\n\n[material]\n" % continuity)
     else:
         text, n = re.subn(r"element_size = [0-9.e-]+", "element_size = %s" % value, text)
         if extra:
@@ -162,12 +167,11 @@ def scene(mesh, folder, jaw="clamped", solver=(), material=(), fibre_vector=None
             text += ('\n[[probe]]\nname = "end_%s_%s"\nkind = "point_displacement"\n'
                      'point = [%.17g, %.17g, %.17g]\ncomponent = "%s"\n' % (name, c, *p, c))
     suffix = "".join("_" + SOLVER_SUFFIX[key] + value.strip('"') for key, value in solver)
-    suffix += "".join("_%s%s" % (key, re.sub(r"[^A-Za-z0-9-]", "p", value))
-                      for key, value in material)
+    suffix += "".join("_%s%s" % (key, name_part(value)) for key, value in material)
     if continuity is not None and kind == "iga":
         suffix += "_C%d" % continuity
     if fibre_vector is not None:
-        suffix += "_fibre_" + "_".join(re.sub(r"[^A-Za-z0-9-]", "p", "%g" % c) for c in fibre_vector)
+        suffix += "_fibre_" + "_".join(name_part("%g" % c) for c in fibre_vector)
     path = os.path.join(folder, "dao_%s%s%s.toml" % ("sliding_" if jaw == "sliding" else "",
                                                        re.sub(r"[:,]", "_", mesh), suffix))
     with open(path, "w") as f:
