@@ -20,11 +20,14 @@ and writes OUT/dao_mesh_study.md with these tables:
 * the Newton and linear-solver work of each run (summary.json).
 
 Usage: /usr/bin/python3 validation/suite/dao_mesh_study.py [--out OUT] [--jobs N] [--reuse]
-       [--meshes iga:3,15,7 iga:3,15,3:1,0,2 tet:0.00075 tet:0.00075:v0,0.0003,0.002 ...]
+       [--meshes iga:3,15,7 iga:3,15,3:1,0,2 tet:0.00075 tet:0.00075:v0,0.0003,0.002 grid:4,8,8 ...]
        [--jaw clamped|sliding] [--indefinite-tangent lu|shift|cut] [--stall-iterations N]
        [--material KEY=VALUE ...] [--constant-fibres X Y Z] [--continuity C]
-A mesh is iga:KNOT_INSERTION[:DEGREE_ELEVATION] or tet:ELEMENT_SIZE[:FACE,SIZE,DISTANCE] (one
-[[tetrahedra.refine]]); the scene's own values where a part is left out.
+A mesh is iga:KNOT_INSERTION[:DEGREE_ELEVATION], tet:ELEMENT_SIZE[:FACE,SIZE,DISTANCE] (one
+[[tetrahedra.refine]]) or grid:AROUND,ALONG,RADIAL (10-node tetrahedra cut from the shrink
+solid's parametric grid with that many cells per knot span of the unrefined solid, 4 x 3 x 1
+spans: structured_tet_mesh.py; grid:4,4,4 has the cells of IGA level 1, grid:4,8,8 of level 2);
+the scene's own values where a part is left out.
 The default meshes are those of the README table (about 3 h on one core; --jobs 2 halves it).
 --jaw sliding replaces the clamped jaw face by one held only along z (free to move in x and y, so
 free to widen as the fibres next to it shorten) and two point constraints against the rigid
@@ -46,6 +49,7 @@ import re
 import numpy as np
 
 from run_suite import ROOT, fields_last_step, run
+from structured_tet_mesh import structured_mesh
 
 DEFAULT_MESHES = ["iga:3,1,1", "iga:3,3,3", "iga:3,7,7", "iga:3,7,15", "iga:3,15,7", "iga:3,15,15",
                   "iga:3,31,3", "tet:0.001", "tet:0.00075", "tet:0.0006"]
@@ -111,7 +115,7 @@ def name_part(value):
 ISOCURVE_FIBRES = '[fibres]\nmode = "isocurve"\ndirection = "v"\n'
 
 
-def scene(mesh, folder, jaw="clamped", solver=(), material=(), fibre_vector=None,
+def scene(mesh, folder, exe, jaw="clamped", solver=(), material=(), fibre_vector=None,
           continuity=None):
     """Scene copy for 'iga:i,j,k[:a,b,c]' (knot insertion, degree elevation) or
     'tet:h[:face,size,distance]' (element size, m; one local refinement), with the jaw face
@@ -120,6 +124,8 @@ def scene(mesh, folder, jaw="clamped", solver=(), material=(), fibre_vector=None
     NURBS isocurve fibres or, with fibre_vector, one constant fibre direction; IGA meshes with
     continuity set get [geometry.refine] continuity (0: C^0 element faces); returns its path."""
     kind, value, *extra = mesh.split(":")
+    if kind not in ("iga", "tet", "grid"):
+        raise SystemExit("dao_mesh_study: mesh '%s': use iga:..., tet:... or grid:..." % mesh)
     base = os.path.join(ROOT, "examples", "dao", "contract.toml" if kind == "iga" else
                         "contract-tet.toml")
     text = open(base).read().replace("../geometry/dao.igs",
@@ -133,6 +139,12 @@ def scene(mesh, folder, jaw="clamped", solver=(), material=(), fibre_vector=None
             text, m = re.subn(r"degree_elevation = \[[^\]]*\]", "degree_elevation = [%s]" %
                               extra[0].replace(",", ", "), text)
             n = min(n, m)
+    elif kind == "grid":
+        # 10-node tetrahedra cut from the solid's parametric grid (structured_tet_mesh.py).
+        msh = os.path.join(folder, "dao_grid_%s.msh" % value.replace(",", "_"))
+        structured_mesh(exe, os.path.join(ROOT, "examples", "geometry", "dao.igs"), msh,
+                        [int(c) for c in value.split(",")])
+        text, n = re.subn(r"element_size = [0-9.e-]+", 'mesh = "%s"' % msh, text)
     else:
         text, n = re.subn(r"element_size = [0-9.e-]+", "element_size = %s" % value, text)
         if extra:
@@ -272,7 +284,7 @@ def main():
     if args.stall_iterations is not None:
         solver.append(("stall_iterations", str(args.stall_iterations)))
     os.makedirs(args.out, exist_ok=True)
-    paths = {m: scene(m, args.out, args.jaw, solver, material, args.constant_fibres,
+    paths = {m: scene(m, args.out, args.exe, args.jaw, solver, material, args.constant_fibres,
                       args.continuity) for m in args.meshes}
     dirs = {m: os.path.splitext(p)[0] for m, p in paths.items()}
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
