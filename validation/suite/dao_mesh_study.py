@@ -117,8 +117,9 @@ ISOCURVE_FIBRES = '[fibres]\nmode = "isocurve"\ndirection = "v"\n'
 
 def scene(mesh, folder, exe, jaw="clamped", solver=(), material=(), fibre_vector=None,
           continuity=None):
-    """Scene copy for 'iga:i,j,k[:a,b,c]' (knot insertion, degree elevation) or
-    'tet:h[:face,size,distance]' (element size, m; one local refinement), with the jaw face
+    """Scene copy for 'iga:i,j,k[:a,b,c]' (knot insertion, degree elevation),
+    'tet:h[:face,size,distance]' (element size, m; one local refinement) or 'grid:a,b,c' (a
+    mesh of the solid's own cells, written next to the scene with exe), with the jaw face
     clamped (the committed scenes) or sliding (module doc), the [solver] keys of solver and the
     [material] parameters of material, each a sequence of (key, TOML value) pairs, and the
     NURBS isocurve fibres or, with fibre_vector, one constant fibre direction; IGA meshes with
