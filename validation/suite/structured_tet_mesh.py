@@ -62,12 +62,15 @@ def read_vtk_grid(path):
 
 
 def sample_solid(exe, iges, surface, centreline, divisions):
+    """The map on the grid (read_vtk_grid) and the solid's volume, m^3, from one call of
+    `isomuscle geometry solid --vtk --json`."""
     with tempfile.TemporaryDirectory() as tmp:
         vtk = os.path.join(tmp, "solid.vtk")
-        subprocess.run([exe, "geometry", "solid", iges, "--surface", str(surface),
-                        "--centreline", centreline, "--vtk", vtk, "--vtk-divisions",
-                        str(divisions)], check=True, stdout=subprocess.DEVNULL)
-        return read_vtk_grid(vtk)
+        text = subprocess.run([exe, "geometry", "solid", iges, "--surface", str(surface),
+                               "--centreline", centreline, "--vtk", vtk, "--vtk-divisions",
+                               str(divisions), "--json"], check=True, capture_output=True,
+                              text=True).stdout
+        return read_vtk_grid(vtk), json.loads(text)["volume_m3"]
 
 
 def merged_ids(half):
@@ -94,11 +97,11 @@ CHECK_POINTS = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1), (0.5, 0, 0), (0.5, 0
 
 def tet10_jacobians(x, pts=CHECK_POINTS):
     """det(dX/dxi) of a 10-node tetrahedron (x: 10 x 3) at the reference points pts."""
+    dl = np.array([[-1, -1, -1], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)  # dL_c / d(r, s, t)
     dets = []
     for r, s, t in pts:
         l = [1 - r - s - t, r, s, t]
         # dN/d(r, s, t) of the quadratic Lagrange basis in barycentric form.
-        dl = np.array([[-1, -1, -1], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
         grad = np.zeros((10, 3))
         for c in range(4):
             grad[c] = (4 * l[c] - 1) * dl[c]
@@ -125,7 +128,7 @@ def build(grid, cells_per_span, divisions):
     def index(i, j, k):
         return (k * shape[1] + j) * shape[2] + i
 
-    tets, edge_node = [], {}
+    tets, axis_edge_node = [], {}
     nodes = [None] * (ids.max() + 1)
     for p, g in enumerate(ids):
         if nodes[g] is None:
@@ -145,20 +148,19 @@ def build(grid, cells_per_span, divisions):
             if len(set(merged)) < 4:
                 continue  # a wedge cell at the axis: this tetrahedron has collapsed
             element = list(merged)
-            mids = []
             for a, b in TET10_EDGES:
-                key = (min(merged[a], merged[b]), max(merged[a], merged[b]))
-                if key not in edge_node:
-                    on_axis = group_size[flat_index[a]] > 2 or group_size[flat_index[b]] > 2
-                    if on_axis:
-                        x = 0.5 * (flat[flat_index[a]] + flat[flat_index[b]])
-                    else:
-                        m = [(half_index[a][d] + half_index[b][d]) // 2 for d in range(3)]
-                        x = flat[index(*m)]
-                    edge_node[key] = len(nodes)
-                    nodes.append(x)
-                mids.append(edge_node[key])
-            element += mids
+                if group_size[flat_index[a]] > 2 or group_size[flat_index[b]] > 2:
+                    # An edge from the axis: one straight midpoint node per pair of corners.
+                    key = (min(merged[a], merged[b]), max(merged[a], merged[b]))
+                    if key not in axis_edge_node:
+                        axis_edge_node[key] = len(nodes)
+                        nodes.append(0.5 * (flat[flat_index[a]] + flat[flat_index[b]]))
+                    element.append(axis_edge_node[key])
+                else:
+                    # The parametric midpoint is a grid point; its merged id is shared across
+                    # the seam and by every tetrahedron on the edge.
+                    m = [(half_index[a][d] + half_index[b][d]) // 2 for d in range(3)]
+                    element.append(ids[index(*m)])
             x = np.array([nodes[n] for n in element])
             if np.linalg.det((x[1:4] - x[0]).T) < 0:
                 element[1], element[2] = element[2], element[1]
@@ -171,7 +173,7 @@ def build(grid, cells_per_span, divisions):
                 for e, (a, b) in enumerate(TET10_EDGES):
                     nodes[element[4 + e]] = 0.5 * (x[a] + x[b])
             tets.append(element)
-    # Only the corners and edge midpoints that the tetrahedra use, renumbered in that order.
+    # Only the grid points and axis midpoints that the tetrahedra use, renumbered in that order.
     used, tets = np.unique(np.array(tets), return_inverse=True)
     tets = tets.reshape(-1, 10)
     nodes = [nodes[n] for n in used]
@@ -198,16 +200,12 @@ def build(grid, cells_per_span, divisions):
 
 
 def mesh_volume(nodes, tets):
-    """Sum over the tetrahedra of det(dX/dxi) integrated by a degree-3 rule, exact for the
-    cubic det J of a 10-node map."""
-    points = [(0.25, 0.25, 0.25, -0.8)] + [
-        p + (0.45,) for p in [(1 / 6, 1 / 6, 1 / 6), (0.5, 1 / 6, 1 / 6), (1 / 6, 0.5, 1 / 6),
-                              (1 / 6, 1 / 6, 0.5)]]
-    total = 0.0
-    for t in tets:
-        x = nodes[t]
-        total += sum(w * tet10_jacobians(x, [(r, s, u)])[0] for r, s, u, w in points) / 6.0
-    return total
+    """Sum over the tetrahedra of det(dX/dxi) integrated by a degree-3 rule (Keast, as
+    tet::tet_rule(3)), exact for the cubic det J of a 10-node map."""
+    s = 1 / 6
+    points = [(0.25, 0.25, 0.25), (s, s, s), (0.5, s, s), (s, 0.5, s), (s, s, 0.5)]
+    weights = np.array([-4 / 30, 9 / 120, 9 / 120, 9 / 120, 9 / 120])
+    return sum(weights @ tet10_jacobians(nodes[t], points) for t in tets)
 
 
 def write_msh(path, nodes, tets, triangles):
@@ -227,20 +225,13 @@ def write_msh(path, nodes, tets, triangles):
 
 
 def structured_mesh(exe, iges, out, cells, surface=0, centreline="v"):
-    """Writes OUT (gmsh 2.2) for CELLS per knot span; returns (nodes, tetrahedra, straightened)."""
+    """Writes OUT (gmsh 2.2) for CELLS per knot span; returns (nodes, tetrahedra, straightened,
+    the NURBS solid's volume)."""
     divisions = 2 * int(np.lcm.reduce(cells))
-    grid = sample_solid(exe, iges, surface, centreline, divisions)
+    grid, solid_volume = sample_solid(exe, iges, surface, centreline, divisions)
     nodes, tets, triangles, straightened = build(grid, cells, divisions)
     write_msh(out, nodes, tets, triangles)
-    return nodes, tets, straightened
-
-
-def solid_volume(exe, iges, surface, centreline):
-    """The NURBS solid's volume, m^3, as `isomuscle geometry solid --json` integrates it."""
-    text = subprocess.run([exe, "geometry", "solid", iges, "--surface", str(surface),
-                           "--centreline", centreline, "--json"], check=True,
-                          capture_output=True, text=True).stdout
-    return json.loads(text)["volume_m3"]
+    return nodes, tets, straightened, solid_volume
 
 
 def main():
@@ -257,10 +248,9 @@ def main():
     cells = [int(c) for c in args.cells.split(",")]
     if len(cells) != 3 or min(cells) < 1:
         parser.error("--cells expects three positive integers, got '%s'" % args.cells)
-    nodes, tets, s = structured_mesh(args.exe, args.iges, args.out, cells, args.surface,
-                                     args.centreline)
+    nodes, tets, s, exact = structured_mesh(args.exe, args.iges, args.out, cells, args.surface,
+                                            args.centreline)
     volume = mesh_volume(nodes, tets)
-    exact = solid_volume(args.exe, args.iges, args.surface, args.centreline)
     change = volume / exact - 1.0
     print("%s: %d nodes, %d 10-node tetrahedra (%d made straight-sided), volume %.9g m^3, "
           "%+.2e of the NURBS solid's" % (args.out, len(nodes), len(tets), s, volume, change))
