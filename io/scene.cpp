@@ -318,6 +318,18 @@ void TetrahedraSettings::validate() const {
       throw InvalidSetting("refine", "and 'mesh' exclude each other: the mesh is given");
   }
   check_range("order", order, Range::closed(1, 2));
+  if (quadrature_degree != 0) {
+    check_range("quadrature_degree", quadrature_degree, Range::closed(1, 15));
+    if (quadrature_degree == 3)
+      throw InvalidSetting(
+          "quadrature_degree",
+          "3 is Keast's 5-point rule, whose negative weight makes the tangent of a "
+          "stable material indefinite; take 2 (4 points), 4 (14 points) or more");
+    if (order == 2 && quadrature_degree < 2)
+      throw InvalidSetting("quadrature_degree",
+                           "1 (one point) leaves 10-node tetrahedra with zero-energy modes; take 2 "
+                           "(4 points, the default) or more");
+  }
   for (const TetRefinement& r : refine) {
     try {
       r.validate(element_size);

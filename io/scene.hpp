@@ -266,8 +266,13 @@ struct TetrahedraSettings {
   std::filesystem::path mesh;  // a gmsh .msh file instead of meshing (relative to the scene)
   double mesh_unit = 1.0;      // metres per length unit of the .msh file
   std::vector<TetRefinement> refine;  // local refinement when meshing (not with a given mesh)
+  // Degree of the element quadrature (tet::tet_rule); 0: the order's default, 1 point for 4-node
+  // and 4 points (degree 2) for 10-node tetrahedra. 4 or 5 take 14 points, 6 to 15 a conical
+  // product; more points integrate the nonlinear law's stresses closer at more assembly cost.
+  int quadrature_degree = 0;
   // element_size > 0 unless a mesh is given, order 1 or 2, each refinement's 0 < size <
-  // element_size and distance > 0.
+  // element_size and distance > 0, quadrature_degree 0 or 1 to 15 but not 3 (the 5-point rule's
+  // negative weight), at least 2 for 10-node tetrahedra (one point leaves zero-energy modes).
   void validate() const;
 };
 

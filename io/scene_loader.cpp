@@ -260,6 +260,7 @@ TetrahedraSettings read_tetrahedra(SceneTable t, const std::filesystem::path& ba
     s.refine.push_back(refinement);
   }
   s.order = t.integer("order", s.order, Range::closed(1, 2));
+  s.quadrature_degree = t.integer("quadrature_degree", s.quadrature_degree, Range::closed(1, 15));
   t.finish();
   validate_at(t, s);
   return s;

@@ -39,6 +39,7 @@ class TetRunModel final : public RunModel {
     s.extra["free_dofs"] = model_.problem->size();
     s.extra["nodes"] = mesh.num_nodes();
     s.extra["quadrature_points"] = model_.space->num_points();
+    s.extra["quadrature_degree"] = model_.space->rule().degree;
     s.extra["formulation"] = tet::to_string(model_.problem->formulation());
   }
 

@@ -167,6 +167,7 @@ TetModel build_tet_model(const Scene& scene, int threads) {
     tet::MeshingOptions mo;
     mo.element_size = t.element_size;
     mo.order = t.order;
+    mo.quadrature_degree = t.quadrature_degree;
     set_face_refinement(mo, model.solid, t.refine);
     for (const TetRefinement& r : t.refine) {
       model.notes.push_back("elements refined near face " + std::string(to_string(r.face)) + ": " +
@@ -199,7 +200,7 @@ TetModel build_tet_model(const Scene& scene, int threads) {
         "[geometry.refine] does not apply to tetrahedra (the mesh is set by "
         "[tetrahedra]); the NURBS solid is used unrefined for fibres and faces");
   }
-  model.space = std::make_unique<tet::TetSpace>(*model.mesh);
+  model.space = std::make_unique<tet::TetSpace>(*model.mesh, t.quadrature_degree);
   model.law = make_law(scene.material, scene.solver.tangent);
 
   // Parameters of the boundary nodes in the solid, for face selection.

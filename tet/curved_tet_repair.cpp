@@ -24,14 +24,13 @@ double straight_determinant(const TetMesh& mesh, std::span<const int> el) {
 
 }  // namespace
 
-double smallest_scaled_jacobian(const TetMesh& mesh, int e) {
+double smallest_scaled_jacobian(const TetMesh& mesh, int e, const TetRule& rule) {
   if (mesh.order != 2)
     return 1.0;
   const std::span<const int> el = mesh.element(e);
   const double straight = straight_determinant(mesh, el);
   std::array<Eigen::Vector3d, 10> dN;
   double smallest = std::numeric_limits<double>::infinity();
-  static const TetRule rule = default_tet_rule(2);
   for (const Eigen::Vector3d& xi : rule.points) {
     tet_shape_gradients(2, xi, dN.data());
     Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
@@ -42,7 +41,7 @@ double smallest_scaled_jacobian(const TetMesh& mesh, int e) {
   return smallest;
 }
 
-int straighten_folded_elements(TetMesh& mesh, double threshold) {
+int straighten_folded_elements(TetMesh& mesh, const TetRule& rule, double threshold) {
   if (mesh.order != 2)
     return 0;
   std::vector<bool> straightened(mesh.num_elements(), false);
@@ -52,7 +51,7 @@ int straighten_folded_elements(TetMesh& mesh, double threshold) {
   for (bool changed = true; changed;) {
     changed = false;
     for (int e = 0; e < mesh.num_elements(); ++e) {
-      if (straightened[e] || smallest_scaled_jacobian(mesh, e) >= threshold)
+      if (straightened[e] || smallest_scaled_jacobian(mesh, e, rule) >= threshold)
         continue;
       const std::span<const int> el = mesh.element(e);
       for (int k = 0; k < 6; ++k) {

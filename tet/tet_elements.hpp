@@ -22,7 +22,8 @@ struct TetRule {
 //   1 -> 1 point (centroid); 2 -> 4 points (symmetric, positive weights);
 //   3 -> 5 points (Keast: one NEGATIVE weight, -2/15; offered for the exactness check only, a
 //        material history at a negative-weight point is not a sound energy);
-//   4..15 -> conical product of Gauss–Legendre rules (n = ceil((degree + 3)/2)
+//   4, 5 -> 14 points (symmetric, positive weights, exact to degree 5);
+//   6..15 -> conical product of Gauss–Legendre rules (n = ceil((degree + 3)/2)
 //        points per direction, positive weights).
 // Throws std::invalid_argument outside 1..15.
 TetRule tet_rule(int degree);

@@ -17,6 +17,9 @@ struct MeshingOptions {
   double element_size = 0.0;  // target edge length, m (> 0)
   int order = 1;              // 1: 4-node, 2: 10-node (high-order nodes on the curved boundary)
   int threads = 1;            // gmsh meshing threads
+  // The degree of the rule the analysis will integrate with (tet_rule; 0: the order's default):
+  // folded curved elements are found at its points (curved_tet_repair.hpp).
+  int quadrature_degree = 0;
   // Local refinement: the target edge length (m) at a point (m) where it is to be smaller than
   // element_size (larger values are cut to element_size); empty: element_size everywhere. gmsh
   // calls it from its meshing threads, so it must not change shared state.

@@ -620,6 +620,28 @@ TEST_F(SceneLoader, TetrahedraAndTheirLocalRefinement) {
   }
 }
 
+// [tetrahedra] quadrature_degree: absent means the order's default (0 here, tet::default_tet_rule
+// in the run); the rules that would make a wrong or indefinite discretisation are refused at
+// their line with the reason and the choices.
+TEST_F(SceneLoader, TetrahedraQuadratureDegree) {
+  const std::string head = "discretisation = \"tet\"\n[tetrahedra]\nelement_size = 0.001\n";
+  EXPECT_EQ(parse(head + minimal()).tetrahedra.quadrature_degree, 0);
+  EXPECT_EQ(parse(head + "quadrature_degree = 4\n" + minimal()).tetrahedra.quadrature_degree, 4);
+  EXPECT_EQ(
+      parse(head + "order = 1\nquadrature_degree = 1\n" + minimal()).tetrahedra.quadrature_degree,
+      1);
+  const auto refused = [&](const std::string& lines, const std::string& why) {
+    const std::string text = head + lines + minimal();
+    const SceneError e = error(text);
+    EXPECT_EQ(e.line(), line_containing(text, "quadrature_degree")) << lines;
+    EXPECT_NE(e.message().find(why), std::string::npos) << e.message();
+  };
+  refused("quadrature_degree = 3\n", "negative weight");
+  refused("quadrature_degree = 1\n", "zero-energy modes");
+  refused("quadrature_degree = 16\n", "'quadrature_degree' in [tetrahedra]");
+  refused("quadrature_degree = 0\n", "'quadrature_degree' in [tetrahedra]");
+}
+
 TEST_F(SceneLoader, SyntaxErrorsInAFile) {
   write_text(dir_ / "bad.toml", "[time]\nend = 1\ndt = \n");
   try {

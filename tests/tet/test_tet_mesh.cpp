@@ -28,8 +28,12 @@ double factorial(int n) {
 
 // int xi^a eta^b zeta^c over the reference tetrahedron = a! b! c! / (a + b + c + 3)!.
 TEST(TetRule, IntegratesMonomialsUpToItsDegree) {
-  for (int degree : {1, 2, 3, 4, 6, 8}) {
+  for (int degree : {1, 2, 3, 4, 5, 6, 8}) {
     const TetRule rule = tet_rule(degree);
+    if (degree != 3) {  // all but Keast's 5-point rule have positive weights (header)
+      for (double w : rule.weights)
+        EXPECT_GT(w, 0.0) << "degree " << degree;
+    }
     for (int a = 0; a <= degree; ++a) {
       for (int b = 0; a + b <= degree; ++b) {
         for (int c = 0; a + b + c <= degree; ++c) {
@@ -53,6 +57,9 @@ TEST(TetRule, IntegratesMonomialsUpToItsDegree) {
   }
   EXPECT_GT(std::abs(sum - 6.0 / factorial(6)), 1e-6);
   EXPECT_THROW(tet_rule(0), std::invalid_argument);
+  // Degrees 4 and 5 take the 14-point rule, not the 64-point conical product.
+  EXPECT_EQ(tet_rule(4).points.size(), 14u);
+  EXPECT_EQ(tet_rule(5).points.size(), 14u);
 }
 
 TEST(TetShape, PartitionOfUnityAndNodalInterpolation) {
@@ -310,6 +317,40 @@ TEST(CurvedTetRepair, FoldedElementsAreStraightenedTheOthersKept) {
   EXPECT_LE(moved, 6 * straightened);
   for (int e = 0; e < mesh.num_elements(); ++e)
     EXPECT_GE(smallest_scaled_jacobian(mesh, e), 0.01) << e;
+}
+
+// The repair looks where the analysis integrates: an edge node pushed towards the opposite corner
+// folds its elements at the 14-point rule's points (nearer the edges) before it folds them at the
+// default 4 points. At the first such push the default repair keeps the mesh, and the repair for
+// the 14-point rule straightens it so that the analysis's space can be built.
+TEST(CurvedTetRepair, FindsTheFoldsAtTheAnalysisRulesPoints) {
+  const TetMesh box =
+      structured_box(Eigen::Vector3d::Zero(), Eigen::Vector3d::Ones(), {2, 2, 2}, 2);
+  const TetRule four = default_tet_rule(2), fourteen = tet_rule(4);
+  const int node = box.element(0)[4];
+  const Eigen::Vector3d midpoint =
+      0.5 * (box.nodes[box.element(0)[0]] + box.nodes[box.element(0)[1]]);
+  const Eigen::Vector3d towards = box.nodes[box.element(0)[3]] - midpoint;
+  const auto smallest = [](const TetMesh& mesh, const TetRule& rule) {
+    double s = 1.0;
+    for (int e = 0; e < mesh.num_elements(); ++e)
+      s = std::min(s, smallest_scaled_jacobian(mesh, e, rule));
+    return s;
+  };
+  TetMesh mesh = box;
+  bool found = false;
+  for (int k = 1; k <= 100 && !found; ++k) {
+    mesh.nodes[node] = midpoint + 0.01 * k * towards;
+    found = smallest(mesh, fourteen) < 0.0 && smallest(mesh, four) >= 0.01;
+  }
+  ASSERT_TRUE(found) << "no push folds the elements at the 14 points only";
+  TetMesh kept = mesh;
+  EXPECT_EQ(straighten_folded_elements(kept, four), 0);
+  EXPECT_THROW(TetSpace(kept, 4), std::invalid_argument);
+  EXPECT_GE(straighten_folded_elements(mesh, fourteen), 1);
+  EXPECT_LT((mesh.nodes[node] - midpoint).norm(), 1e-15);
+  EXPECT_GE(smallest(mesh, fourteen), 0.01);
+  EXPECT_NO_THROW(TetSpace(mesh, 4));
 }
 
 TEST(MeshIges, MissingFileNamesIt) {

@@ -23,6 +23,7 @@ Usage: /usr/bin/python3 validation/suite/dao_mesh_study.py [--out OUT] [--jobs N
        [--meshes iga:3,15,7 iga:3,15,3:1,0,2 tet:0.00075 tet:0.00075:v0,0.0003,0.002 grid:4,8,8 ...]
        [--jaw clamped|sliding] [--indefinite-tangent lu|shift|cut] [--stall-iterations N]
        [--material KEY=VALUE ...] [--constant-fibres X Y Z] [--continuity C]
+       [--tet-quadrature DEGREE]
 A mesh is iga:KNOT_INSERTION[:DEGREE_ELEVATION], tet:ELEMENT_SIZE[:FACE,SIZE,DISTANCE] (one
 [[tetrahedra.refine]]) or grid:AROUND,ALONG,RADIAL (10-node tetrahedra cut from the shrink
 solid's parametric grid with that many cells per knot span of the unrefined solid, 4 x 3 x 1
@@ -40,6 +41,8 @@ The variants of the 2026-12-05 section: --material D=1e-5 adds a [material.param
 (tang2009 parameters; _D1e-5 in the names), --constant-fibres 0 0 1 replaces the NURBS isocurve
 fibres by one direction (_fibre_0_0_1), --continuity 0 gives the IGA meshes C^0 element faces
 ([geometry.refine] continuity, the Lagrange space on the same elements; _C0).
+--tet-quadrature 4 integrates the tetrahedral meshes with the 14-point rule instead of the
+10-node default's 4 points ([tetrahedra] quadrature_degree; _q4 in the names).
 """
 import argparse
 import concurrent.futures
@@ -116,14 +119,15 @@ ISOCURVE_FIBRES = '[fibres]\nmode = "isocurve"\ndirection = "v"\n'
 
 
 def scene(mesh, folder, exe, jaw="clamped", solver=(), material=(), fibre_vector=None,
-          continuity=None):
+          continuity=None, tet_quadrature=None):
     """Scene copy for 'iga:i,j,k[:a,b,c]' (knot insertion, degree elevation),
     'tet:h[:face,size,distance]' (element size, m; one local refinement) or 'grid:a,b,c' (a
     mesh of the solid's own cells, written next to the scene with exe), with the jaw face
     clamped (the committed scenes) or sliding (module doc), the [solver] keys of solver and the
     [material] parameters of material, each a sequence of (key, TOML value) pairs, and the
     NURBS isocurve fibres or, with fibre_vector, one constant fibre direction; IGA meshes with
-    continuity set get [geometry.refine] continuity (0: C^0 element faces); returns its path."""
+    continuity set get [geometry.refine] continuity (0: C^0 element faces), tetrahedral meshes
+    with tet_quadrature set [tetrahedra] quadrature_degree; returns its path."""
     kind, value, *extra = mesh.split(":")
     if kind not in ("iga", "tet", "grid"):
         raise SystemExit("dao_mesh_study: mesh '%s': use iga:..., tet:... or grid:..." % mesh)
@@ -154,6 +158,11 @@ def scene(mesh, folder, exe, jaw="clamped", solver=(), material=(), fibre_vector
                      (face, size, distance))
     if n != 1 or len(extra) > 1:
         raise SystemExit("dao_mesh_study: cannot set the mesh '%s' in %s" % (mesh, base))
+    if tet_quadrature is not None and kind != "iga":
+        text = text.replace("\n[tetrahedra]\n", "\n[tetrahedra]\nquadrature_degree = %d\n" %
+                            tet_quadrature)
+        if "quadrature_degree" not in text:
+            raise SystemExit("dao_mesh_study: no [tetrahedra] table in %s" % base)
     if jaw == "sliding":
         if CLAMPED_JAW not in text:
             raise SystemExit("dao_mesh_study: no clamped jaw face to replace in %s" % base)
@@ -183,6 +192,8 @@ def scene(mesh, folder, exe, jaw="clamped", solver=(), material=(), fibre_vector
     suffix += "".join("_%s%s" % (key, name_part(value)) for key, value in material)
     if continuity is not None and kind == "iga":
         suffix += "_C%d" % continuity
+    if tet_quadrature is not None and kind != "iga":
+        suffix += "_q%d" % tet_quadrature
     if fibre_vector is not None:
         suffix += "_fibre_" + "_".join(name_part("%g" % c) for c in fibre_vector)
     path = os.path.join(folder, "dao_%s%s%s.toml" % ("sliding_" if jaw == "sliding" else "",
@@ -272,6 +283,9 @@ def main():
     parser.add_argument("--continuity", type=int,
                         help="IGA meshes: [geometry.refine] continuity (0: C^0 element faces, the "
                         "Lagrange FE space on the same elements)")
+    parser.add_argument("--tet-quadrature", type=int, metavar="DEGREE",
+                        help="tetrahedral meshes: [tetrahedra] quadrature_degree (the 10-node "
+                        "default is 2, 4 points; 4 takes 14 points)")
     args = parser.parse_args()
     material = []
     for item in args.material:
@@ -286,7 +300,7 @@ def main():
         solver.append(("stall_iterations", str(args.stall_iterations)))
     os.makedirs(args.out, exist_ok=True)
     paths = {m: scene(m, args.out, args.exe, args.jaw, solver, material, args.constant_fibres,
-                      args.continuity) for m in args.meshes}
+                      args.continuity, args.tet_quadrature) for m in args.meshes}
     dirs = {m: os.path.splitext(p)[0] for m, p in paths.items()}
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         results = dict(zip(args.meshes, pool.map(
