@@ -112,6 +112,10 @@ TetRule default_tet_rule(int order) {
   return tet_rule(tet_nodes(order) == 4 ? 1 : 2);
 }
 
+TetRule analysis_tet_rule(int order, int quadrature_degree) {
+  return quadrature_degree == 0 ? default_tet_rule(order) : tet_rule(quadrature_degree);
+}
+
 // N_i = L_i (4 nodes); L_i (2 L_i - 1) and 4 L_i L_j (10 nodes), header.
 void tet_shape_values(int order, const Eigen::Vector3d& xi, double* values) {
   const double L[4] = {1.0 - xi[0] - xi[1] - xi[2], xi[0], xi[1], xi[2]};

@@ -32,6 +32,11 @@ TetRule tet_rule(int degree);
 // 10-node tetrahedra (degree 2: exact for the stiffness of a straight-sided element).
 TetRule default_tet_rule(int order);
 
+// The rule a run integrates with: default_tet_rule(order) for quadrature_degree 0, else
+// tet_rule(quadrature_degree) ([tetrahedra] quadrature_degree). One place, so that the space and
+// the folded-element repair look at the same points.
+TetRule analysis_tet_rule(int order, int quadrature_degree);
+
 // Shape function values N (4 or 10 entries) at xi.
 void tet_shape_values(int order, const Eigen::Vector3d& xi, double* values);
 // Gradients dN/dxi (4 or 10 vectors) at xi.

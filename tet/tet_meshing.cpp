@@ -327,9 +327,8 @@ TetMesh mesh_iges(const std::filesystem::path& file, const MeshingOptions& optio
     const LocalSizeCallback local_size(options);
     generate_contained(name, options.order);
     TetMesh mesh = extract_mesh(name, 1.0);
-    const int repaired = straighten_folded_elements(
-        mesh, options.quadrature_degree == 0 ? default_tet_rule(mesh.order)
-                                             : tet_rule(options.quadrature_degree));
+    const int repaired =
+        straighten_folded_elements(mesh, analysis_tet_rule(mesh.order, options.quadrature_degree));
     if (straightened)
       *straightened = repaired;
     return mesh;

@@ -9,8 +9,7 @@ namespace isomuscle::tet {
 
 // dN/dX = (dX/dxi)^-T dN/dxi, dV = w det(dX/dxi) at every element and point (header).
 TetSpace::TetSpace(const TetMesh& mesh, int quadrature_degree)
-    : mesh_(mesh),
-      rule_(quadrature_degree == 0 ? default_tet_rule(mesh.order) : tet_rule(quadrature_degree)) {
+    : mesh_(mesh), rule_(analysis_tet_rule(mesh.order, quadrature_degree)) {
   nen_ = tet_nodes(mesh.order);
   nqp_ = static_cast<int>(rule_.points.size());
   values_.resize(static_cast<std::size_t>(nqp_) * nen_);

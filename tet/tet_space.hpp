@@ -13,7 +13,7 @@ namespace isomuscle::tet {
 
 class TetSpace {
  public:
-  // mesh must outlive the space. quadrature_degree 0 = default_tet_rule(order). Throws
+  // mesh must outlive the space. the rule is analysis_tet_rule(order, quadrature_degree). Throws
   // std::invalid_argument naming the element and point where det(dX/dxi) <= 0.
   explicit TetSpace(const TetMesh& mesh, int quadrature_degree = 0);
 
