@@ -130,6 +130,22 @@ void print_indefinite_tangents(const io::RunSummary& s, std::ostream& out) {
   }
 }
 
+// One line on the converged steps whose equilibrium is unstable (none: nothing), so that a result
+// on an unstable branch is not read as the muscle's response without a warning:
+//   unstable equilibria: 12 of 20 converged steps, t = 0.45 to 1 s (...)
+void print_unstable_equilibria(const io::RunSummary& s, std::ostream& out) {
+  const auto stability = s.extra.find("stability");
+  if (stability == s.extra.end() || !stability->is_object() ||
+      stability->value("unstable_steps", 0) == 0)
+    return;
+  out << "unstable equilibria: " << stability->at("unstable_steps").get<int>() << " of " << s.steps
+      << " converged steps, t = " << std::setprecision(4)
+      << stability->at("first_unstable_time").get<double>() << " to "
+      << stability->at("last_unstable_time").get<double>()
+      << " s (the tangent of their last Newton iteration is not positive definite: past a "
+         "bifurcation or a limit point; see the note in summary.json)\n";
+}
+
 int run(const RunArgs& args) {
   io::Scene scene;
   try {
@@ -189,12 +205,14 @@ int run(const RunArgs& args) {
               << " converged steps, up to t = " << result.time_reached << " s) in "
               << result.out_dir.string() << "\n";
     print_indefinite_tangents(s, std::cerr);
+    print_unstable_equilibria(s, std::cerr);
     return 1;
   }
   std::cout << "converged: " << s.steps << " steps, " << s.newton_iterations
             << " Newton iterations, " << s.step_cuts.size() << " step cuts, " << s.dofs << " DOFs, "
             << std::setprecision(3) << s.wall_seconds.total << " s\n";
   print_indefinite_tangents(s, std::cout);
+  print_unstable_equilibria(s, std::cout);
   if (s.max_displacement_m)
     std::cout << "max |u| = " << std::setprecision(6) << *s.max_displacement_m << " m\n";
   if (s.volume_initial_m3 && s.volume_final_m3) {

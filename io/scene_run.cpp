@@ -40,6 +40,13 @@ std::string format_seconds(double seconds) {
   return text;
 }
 
+// "0.18984" (five significant digits, as the progress lines): a time of the run, for messages.
+std::string format_run_time(double time) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.5g", time);
+  return text;
+}
+
 // Accumulates the wall time of a scope into a total (s).
 class ScopedSeconds {
  public:
@@ -216,6 +223,14 @@ void copy_scene(const Scene& scene, const fs::path& out_dir) {
   }
 }
 
+// Why a converged step whose last tangent is indefinite matters to the user (StepRecord::unstable).
+constexpr const char* unstable_equilibrium_text =
+    "the equilibrium reached is unstable (the potential energy falls along some direction: a "
+    "bifurcation or a limit point was passed, e.g. buckling). The LU response of the linear "
+    "solver ([solver] indefinite_tangent) follows such a path; a real muscle, with its mass or the "
+    "smallest imperfection, leaves it. Results from there on lie on an unstable branch, and a "
+    "quantity along the soft direction may change much with the mesh or the data";
+
 }  // namespace
 
 // Set-up, stepping and outputs of one scene (see scene_run.hpp); reads top to bottom.
@@ -298,6 +313,10 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   // The smallest and the largest J over the converged steps, and when each was reached.
   std::optional<JacobianAt> min_jacobian, max_jacobian;
   double min_jacobian_time = 0.0, max_jacobian_time = 0.0;
+  // Converged steps whose equilibrium is unstable (StepRecord::unstable), the first and last time.
+  int unstable_steps = 0;
+  std::optional<double> first_unstable, last_unstable;
+  bool last_step_unstable = false;
   std::vector<double> probe_row;
   std::optional<std::vector<double>> last_probes;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
@@ -350,6 +369,15 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         if (!max_jacobian || J->largest.value > max_jacobian->value) {
           max_jacobian = J->largest;
           max_jacobian_time = r.time;
+        }
+      }
+      last_step_unstable = r.unstable;
+      if (r.unstable) {
+        ++unstable_steps;
+        last_unstable = r.time;
+        if (!first_unstable) {
+          first_unstable = r.time;
+          log("note: t = " + format_run_time(r.time) + " s: " + unstable_equilibrium_text);
         }
       }
       write_newton_rows(r.step, r.time, r.dt, n, true);
@@ -421,6 +449,20 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
                              {"tangent_evaluations", ns.tangent_evaluations}};
   }
   s.extra["time"] = Json{{"end", scene.time.end}, {"reached", result.time_reached}};
+  const auto optional_time = [](const std::optional<double>& t) {
+    return t ? Json(*t) : Json(nullptr);
+  };
+  s.extra["stability"] = Json{{"unstable_steps", unstable_steps},
+                              {"first_unstable_time", optional_time(first_unstable)},
+                              {"last_unstable_time", optional_time(last_unstable)},
+                              {"last_step_unstable", last_step_unstable}};
+  if (unstable_steps > 0) {
+    s.extra["notes"].push_back(
+        std::to_string(unstable_steps) + " of " + std::to_string(steps) +
+        " converged steps, from t = " + format_run_time(*first_unstable) +
+        " s to t = " + format_run_time(*last_unstable) +
+        " s, ended on a tangent that is not positive definite: " + unstable_equilibrium_text);
+  }
   const auto jacobian_json = [](const std::optional<JacobianAt>& J, double time) {
     if (!J)
       return Json(nullptr);

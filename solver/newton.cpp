@@ -66,6 +66,13 @@ void NewtonSettings::validate() const {
   linear.validate();
 }
 
+bool ends_on_indefinite_tangent(const NewtonResult& result) {
+  if (result.history.empty())
+    return false;
+  const NewtonIteration& last = result.history.back();
+  return last.lu_fallback || last.shift > 0.0;
+}
+
 std::string to_string(NewtonStop stop) {
   switch (stop) {
     case NewtonStop::Converged:

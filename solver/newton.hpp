@@ -115,6 +115,14 @@ struct NewtonResult {
   std::vector<NewtonIteration> history;
 };
 
+// Whether the factorisation of the solve's last iteration found the tangent not positive definite
+// (Cholesky failed; LU or a shift was used). For a converged solve that tangent is the one at the
+// last iterate but one, which differs from the equilibrium by the last, converged correction: the
+// equilibrium found is unstable (it has a direction of falling potential energy, past a bifurcation
+// or a limit point), unless its smallest eigenvalue is so near zero that the correction moved it
+// across. Newton with the LU response converges to such equilibria; see linear_solver.hpp.
+bool ends_on_indefinite_tangent(const NewtonResult& result);
+
 // Totals over the lifetime of a NewtonSolver (for the run summary).
 struct NewtonStatistics {
   int solves = 0;

@@ -152,6 +152,7 @@ TimeStepperResult TimeStepper::run(NonlinearProblem& problem, Eigen::VectorXd& u
       record.min_rcond = newton.min_rcond;
       record.lu_fallbacks = newton.lu_fallbacks;
       record.shifted_factorizations = newton.shifted_factorizations;
+      record.unstable = ends_on_indefinite_tangent(newton);
       record.output_time = lands && is_output_time(t);
       result.steps.push_back(record);
       if (on_step) {

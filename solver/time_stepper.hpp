@@ -62,6 +62,9 @@ struct StepRecord {
   double min_rcond = 0.0;
   int lu_fallbacks = 0;
   int shifted_factorizations = 0;
+  // The tangent of the last Newton iteration was not positive definite: the equilibrium reached
+  // is unstable (ends_on_indefinite_tangent, newton.hpp).
+  bool unstable = false;
   bool output_time = false;  // the step ended on a requested output time
 };
 

@@ -141,6 +141,10 @@ TEST_F(SlowRunCli, SmallBarrelContractionWritesEveryResult) {
   check_extreme_J("min_jacobian");
   check_extreme_J("max_jacobian");
   EXPECT_LE(s["min_jacobian"]["value"].get<double>(), 1.0);
+  // A contraction whose equilibria are all stable says so.
+  EXPECT_EQ(s["stability"]["unstable_steps"], 0);
+  EXPECT_TRUE(s["stability"]["first_unstable_time"].is_null());
+  EXPECT_FALSE(s["stability"]["last_step_unstable"].get<bool>());
   EXPECT_GE(s["max_jacobian"]["value"].get<double>(), 1.0);
 
   EXPECT_TRUE(fs::exists(out / "fields.xdmf"));
@@ -486,6 +490,62 @@ TEST_F(RunCli, IndefiniteTangentResponsesReachTheSameStretchOrCut) {
   EXPECT_NE(cut_run.err.find("indefinite_tangent = \"cut\": each ended its Newton solve"),
             std::string::npos)
       << cut_run.err;
+}
+
+// A column pushed past its buckling load: the barrel (5 cm long, 0.9 to 1.75 cm across), clamped
+// at both ends, passive neo-Hookean, its free end pushed 2 cm along its axis. The straight,
+// barrelling shape stays an equilibrium by symmetry, and Newton with the LU response follows it,
+// but past the Euler load it is unstable. The run says so at the first such step, counts the steps
+// in summary.json's "stability" (the converged steps whose last Newton iteration fell back to LU,
+// as newton.csv shows them), and adds a note. Measured: the first unstable state at 18 %
+// shortening (t = 0.45 s); the Euler strain of a clamped-clamped column of circular section,
+// pi^2 r^2 / L^2, is 19 % for the barrel's mean radius of 0.7 cm.
+TEST_F(SlowRunCli, CompressedColumnReportsItsUnstableEquilibria) {
+  const fs::path scene =
+      write("column.toml",
+            replace_all(barrel_scene("[material]\nmodel = \"neo_hookean\"\n",
+                                     "[[boundary]]\nface = \"v1\"\ntype = \"displacement\"\n"
+                                     "velocity = [0.0, 0.0, -0.02]\n",
+                                     "end = 1.0\ndt = 0.05\ndt_max = 0.05\nadaptive = false\n"),
+                        "knot_insertion = [1, 1, 0]", "knot_insertion = [1, 3, 0]"));
+  const fs::path out = dir_ / "column";
+  const CliResult r = run("run " + scene.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json s = summary(out);
+  const nlohmann::json& stability = s["stability"];
+  ASSERT_TRUE(stability.is_object()) << s.dump(2);
+
+  // The steps whose last Newton row used LU, from newton.csv.
+  const Table newton = read_csv(out / "newton.csv");
+  std::map<double, double> last_lu;  // step -> lu_fallback of its last converged row
+  for (const auto& row : newton.rows)
+    if (row[newton.column("converged")] == 1.0)
+      last_lu[row[newton.column("step")]] = row[newton.column("lu_fallback")];
+  int unstable = 0;
+  for (const auto& [step, lu] : last_lu)
+    unstable += lu == 1.0 ? 1 : 0;
+  ASSERT_EQ(last_lu.size(), 20u);
+  EXPECT_EQ(stability["unstable_steps"].get<int>(), unstable);
+  EXPECT_GE(unstable, 5);
+  const double first = stability["first_unstable_time"].get<double>();
+  EXPECT_GT(first, 0.25);  // stable below 10 % shortening
+  EXPECT_LT(first, 0.75);  // unstable before 30 %
+  EXPECT_DOUBLE_EQ(stability["last_unstable_time"].get<double>(), 1.0);
+  EXPECT_TRUE(stability["last_step_unstable"].get<bool>());
+  // Once past the load, every later state is unstable too.
+  EXPECT_EQ(unstable, static_cast<int>(std::round((1.0 - first) / 0.05)) + 1);
+  EXPECT_NE(r.err.find(" s: the equilibrium reached is unstable"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("unstable equilibria: " + std::to_string(unstable) +
+                       " of 20 converged "
+                       "steps, t = "),
+            std::string::npos)
+      << r.out;
+  bool noted = false;
+  for (const auto& note : s["notes"])
+    noted = noted || note.get<std::string>().find(std::to_string(unstable) +
+                                                  " of 20 converged "
+                                                  "steps") != std::string::npos;
+  EXPECT_TRUE(noted) << s["notes"].dump(2);
 }
 
 // The displacement formulation with a nearly incompressible law (lu2010: kappa/mu ~ 1e4) is

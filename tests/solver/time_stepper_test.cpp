@@ -8,8 +8,10 @@
 #include <cmath>
 #include <cstring>
 #include <iostream>
+#include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "solver/setting_error.hpp"
 #include "tests/solver/test_problems.hpp"
@@ -138,6 +140,73 @@ TEST(TimeStepper, EvaluationFailureCutsTheStepAndEndsWithTheLastGoodState) {
   ASSERT_TRUE(newton.solve(problem, beyond).converged);
   EXPECT_LE(u.cwiseAbs().maxCoeff(), 1.5);
   EXPECT_GT(beyond.cwiseAbs().maxCoeff(), 1.5);
+}
+
+// A column under a compressive load growing with time, in its simplest discrete form: n lateral
+// deflections u_i of a pinned chain with springs k between neighbours (K_0 = k tridiag(-1, 2, -1)),
+// softened by the load t (the geometric stiffness -t I), and pushed sideways by a small force f:
+//   r(u) = (K_0 - t I) u - f.
+// The straight column is stable while t < t_cr = lambda_min(K_0) = 2 k (1 - cos(pi / (n + 1))), the
+// Euler load of the chain; beyond it K is indefinite and every equilibrium is unstable. Newton's
+// LU response converges to them (one iteration: r is linear in u).
+class SofteningChainProblem : public NonlinearProblem {
+ public:
+  SofteningChainProblem(int n, double k) : n_(n), k_(k) {}
+  int size() const override { return n_; }
+  double critical_load() const { return 2.0 * k_ * (1.0 - std::cos(std::numbers::pi / (n_ + 1))); }
+  void begin_step(double time, double) override { load_ = time; }
+  EvaluationStatus evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& r,
+                            SparseMatrix* tangent) override {
+    r.resize(n_);
+    for (int i = 0; i < n_; ++i) {
+      r[i] = (2.0 * k_ - load_) * u[i] - 1e-3;
+      if (i > 0)
+        r[i] -= k_ * u[i - 1];
+      if (i + 1 < n_)
+        r[i] -= k_ * u[i + 1];
+    }
+    if (tangent != nullptr) {
+      std::vector<Eigen::Triplet<double>> upper;
+      for (int i = 0; i < n_; ++i) {
+        upper.emplace_back(i, i, 2.0 * k_ - load_);
+        if (i + 1 < n_)
+          upper.emplace_back(i, i + 1, -k_);
+      }
+      tangent->resize(n_, n_);
+      tangent->setFromTriplets(upper.begin(), upper.end());
+      tangent->makeCompressed();
+    }
+    return EvaluationStatus::success();
+  }
+  void commit_step(const Eigen::VectorXd&) override {}
+
+ private:
+  int n_;
+  double k_;
+  double load_ = 0.0;
+};
+
+// Past the Euler load the equilibria the stepper converges to are unstable, and exactly those
+// steps say so (StepRecord::unstable); a run of the isomuscle app reports them in summary.json.
+TEST(TimeStepper, MarksTheStepsWhoseEquilibriumIsUnstable) {
+  SofteningChainProblem problem(8, 4.0);
+  const double critical = problem.critical_load();
+  ASSERT_GT(critical, 0.45);
+  ASSERT_LT(critical, 0.5);  // between the steps ending at 0.4 and 0.5
+  // r is linear: one exact correction reaches round-off, so the residual alone decides (the
+  // energy floor far above E_1 ~ 1e-5) and no second iteration searches below round-off.
+  NewtonSettings newton;
+  newton.absolute_residual_tolerance = 1e-12;
+  newton.absolute_energy_tolerance = 1.0;
+  TimeStepper stepper(stepping(0.1, 0.1), newton);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
+  const TimeStepperResult result = stepper.run(problem, u);
+  ASSERT_TRUE(result.completed) << result.message;
+  ASSERT_EQ(result.steps.size(), 10u);
+  for (const StepRecord& step : result.steps) {
+    EXPECT_EQ(step.unstable, step.time > critical) << "t = " << step.time;
+    EXPECT_EQ(step.lu_fallbacks, step.time > critical ? 1 : 0) << "t = " << step.time;
+  }
 }
 
 TEST(TimeStepper, IsDeterministic) {

@@ -17,7 +17,8 @@ and writes OUT/dao_mesh_study.md with these tables:
 * the end's y against time (probes.csv, interpolated; "." past the last converged step);
 * u_y across the width at four heights (the mean over the tessellation or mesh points within
   0.5 mm of the height, in 2 mm bins of x): the fan's cupping, and whether it wrinkles;
-* the Newton and linear-solver work of each run (summary.json).
+* the Newton and linear-solver work of each run (summary.json), with the converged steps whose
+  equilibrium is unstable (summary.json's stability).
 
 Usage: /usr/bin/python3 validation/suite/dao_mesh_study.py [--out OUT] [--jobs N] [--reuse]
        [--meshes iga:3,15,7 iga:3,15,3:1,0,2 tet:0.00075 tet:0.00075:v0,0.0003,0.002 grid:4,8,8 ...]
@@ -330,15 +331,19 @@ def main():
                "|---" * (len(HISTORY_TIMES) + 1) + "|"]
     history += ["| %s | " % m + " | ".join(y_history(dirs[m])) + " |" for m in args.meshes]
     work = ["| mesh | steps | Newton iterations | step cuts | Cholesky failures | LU fallbacks (s) | "
-            "shifted factorisations (largest tau, s) | wall |", "|---" * 8 + "|"]
+            "shifted factorisations (largest tau, s) | unstable steps (from t) | wall |",
+            "|---" * 9 + "|"]
     for m in args.meshes:
         s = results[m]["summary"]
         ls = s.get("linear_solver_statistics", {})
-        work.append("| %s | %d | %d | %d | %d | %d (%.0f s) | %d (%.0e, %.0f s) | %.0f s |" % (
+        st = s.get("stability", {})  # runs before 2026-12-06 have none
+        unstable = ("%d (%.4g s)" % (st["unstable_steps"], st["first_unstable_time"])
+                    if st.get("unstable_steps") else "0" if st else "-")
+        work.append("| %s | %d | %d | %d | %d | %d (%.0f s) | %d (%.0e, %.0f s) | %s | %.0f s |" % (
             m, s["steps"], s["newton_iterations"], len(s["step_cuts"]), ls.get("cholesky_failures", 0),
             ls.get("lu_fallbacks", 0), ls.get("lu_seconds", 0.0),
             ls.get("shifted_factorizations", 0), ls.get("max_shift", 0.0),
-            ls.get("shifted_seconds", 0.0), s["wall_seconds"]["total"]))
+            ls.get("shifted_seconds", 0.0), unstable, s["wall_seconds"]["total"]))
     width = []
     for h in WIDTH_HEIGHTS_MM:
         width += ["", "z = %g mm:" % h, "",
