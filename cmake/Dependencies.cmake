@@ -2,6 +2,8 @@
 # See ../shared/TOOLING.md for why each call looks the way it does.
 
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+# Spectra (header-only): Lanczos eigenpairs of the tangent at unstable equilibria (lowest_modes).
+find_package(spectra 1.0 REQUIRED CONFIG)
 
 # OpenCASCADE: listing only DataExchange fails with missing targets; its targets carry no include dirs.
 find_package(OpenCASCADE REQUIRED COMPONENTS FoundationClasses ModelingData ModelingAlgorithms

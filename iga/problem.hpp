@@ -139,6 +139,10 @@ class Problem : public solver::NonlinearProblem {
   Eigen::Vector3d sum_over_nodes(const Eigen::VectorXd& f_full, std::span<const int> nodes) const;
   // Current volume int J dV of a full displacement vector (m^3).
   double current_volume(const Eigen::VectorXd& u_full) const;
+  // Lumped reference volume of every node, int R_a dV summed over its control points (m^3): the
+  // row sums of the consistent mass per unit density, positive because the NURBS basis is. They
+  // sum to the reference volume.
+  Eigen::VectorXd lumped_volumes() const;
   // Displacement at a parametric point (m).
   Eigen::Vector3d displacement_at(const Eigen::VectorXd& u_full, const Eigen::Vector3d& xi) const;
   // Stress, J, fibre at a parametric point of the COMMITTED state: sigma, J~, p~ and the reference

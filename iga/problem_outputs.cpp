@@ -30,6 +30,19 @@ double Problem::current_volume(const Eigen::VectorXd& u_full) const {
   return volume;
 }
 
+Eigen::VectorXd Problem::lumped_volumes() const {
+  Eigen::VectorXd volumes = Eigen::VectorXd::Zero(dofs_.num_nodes());
+  for (int e = 0; e < space_.num_elements(); ++e) {
+    const auto cps = space_.control_points(e);
+    for (int q = 0; q < space_.points_per_element(); ++q) {
+      const auto values = space_.values(e, q);
+      for (std::size_t a = 0; a < cps.size(); ++a)
+        volumes[dofs_.node(cps[a])] += values[a] * space_.dv(e, q);
+    }
+  }
+  return volumes;
+}
+
 Eigen::Vector3d Problem::displacement_at(const Eigen::VectorXd& u_full,
                                          const Eigen::Vector3d& xi) const {
   return evaluate_field(space_, dofs_, u_full, xi).u;

@@ -108,6 +108,18 @@ class IgaRunModel final : public RunModel {
   std::optional<JacobianRangeAt> committed_jacobian_range() const override {
     return committed_jacobian_range_of(*model_.problem);
   }
+  FreeDofLayout free_dof_layout() const override {
+    const iga::DofMap& dofs = *model_.dofs;
+    FreeDofLayout layout;
+    for (int node = 0; node < dofs.num_nodes(); ++node)
+      layout.node_positions.push_back(dofs.position(node));
+    layout.node_volumes = model_.problem->lumped_volumes();
+    for (int dof : model_.problem->constraints().free_dofs()) {
+      layout.node_of.push_back(dof / 3);
+      layout.component_of.push_back(dof % 3);
+    }
+    return layout;
+  }
   double current_volume() const override {
     return model_.problem->current_volume(model_.problem->committed_displacement());
   }

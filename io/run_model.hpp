@@ -38,6 +38,17 @@ std::optional<JacobianRangeAt> committed_jacobian_range_of(const Problem& proble
   return JacobianRangeAt{at(r.smallest), at(r.largest)};
 }
 
+// The free unknowns of a problem as points of the mesh, for showing a vector over them (the mode of
+// an unstable equilibrium, unstable_mode.hpp): per node its reference position (m) and lumped
+// reference volume (m^3, the diagonal mass per unit density: iga::Problem::lumped_volumes,
+// tet::TetProblem::lumped_volumes); per free unknown i its node node_of[i] and displacement
+// component component_of[i].
+struct FreeDofLayout {
+  std::vector<Eigen::Vector3d> node_positions;
+  Eigen::VectorXd node_volumes;
+  std::vector<int> node_of, component_of;
+};
+
 class RunModel {
  public:
   virtual ~RunModel() = default;
@@ -79,6 +90,8 @@ class RunModel {
   // Smallest and largest J over the quadrature points of the committed state; nullopt before the
   // first commit.
   virtual std::optional<JacobianRangeAt> committed_jacobian_range() const = 0;
+  // The free unknowns as mesh points (computed when called).
+  virtual FreeDofLayout free_dof_layout() const = 0;
 };
 
 }  // namespace isomuscle::io

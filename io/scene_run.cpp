@@ -14,6 +14,7 @@
 #include "io/iga_run_model.hpp"
 #include "io/run_model.hpp"
 #include "io/tet_run_model.hpp"
+#include "io/unstable_mode.hpp"
 #include "isomuscle/version.hpp"
 #include "solver/time_stepper.hpp"
 
@@ -317,6 +318,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   int unstable_steps = 0;
   std::optional<double> first_unstable, last_unstable;
   bool last_step_unstable = false;
+  // The mode of the first unstable equilibrium (unstable_mode.hpp), computed before its commit.
+  std::optional<UnstableMode> unstable_mode;
+  const std::string mode_file = "unstable_mode.csv";
   std::vector<double> probe_row;
   std::optional<std::vector<double>> last_probes;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
@@ -330,11 +334,24 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
       ScopedSeconds timer(wall.output);
       model->write_fields();  // the reference state at t = 0
     }
-    SteppedProblem stepped_problem(problem, newton.correction_tolerance,
-                                   [&](const Eigen::VectorXd& converged) {
-                                     ScopedSeconds timer(wall.output);
-                                     model->before_commit(converged);
-                                   });
+    // A diagnosis: its failure (even a file that cannot be written) is reported, never the run's.
+    const auto find_mode = [&](const Eigen::VectorXd& converged) {
+      try {
+        return compute_unstable_mode(problem, converged, model->free_dof_layout(),
+                                     options.out_dir / mode_file);
+      } catch (const std::exception& e) {
+        UnstableMode failed;
+        failed.message = e.what();
+        return failed;
+      }
+    };
+    SteppedProblem stepped_problem(
+        problem, newton.correction_tolerance, [&](const Eigen::VectorXd& converged) {
+          ScopedSeconds timer(wall.output);
+          if (!unstable_mode && stepper->newton().last_solve_ends_on_indefinite_tangent())
+            unstable_mode = find_mode(converged);
+          model->before_commit(converged);
+        });
     // One row per Newton iteration, of converged steps and of failed attempts (converged 0: the
     // step that was cut, numbered as the step it tried to be, at the time it tried to reach), so
     // that a stall before a cut can be read off the file.
@@ -378,6 +395,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         if (!first_unstable) {
           first_unstable = r.time;
           log("note: t = " + format_run_time(r.time) + " s: " + unstable_equilibrium_text);
+          if (unstable_mode)
+            log("note: t = " + format_run_time(r.time) +
+                " s: the tangent at this equilibrium: " + describe(*unstable_mode, mode_file));
         }
       }
       write_newton_rows(r.step, r.time, r.dt, n, true);
@@ -456,6 +476,24 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
                               {"first_unstable_time", optional_time(first_unstable)},
                               {"last_unstable_time", optional_time(last_unstable)},
                               {"last_step_unstable", last_step_unstable}};
+  if (unstable_mode) {
+    const UnstableMode& m = *unstable_mode;
+    Json mode{{"time", optional_time(first_unstable)}, {"found", m.ok}};
+    if (m.ok) {
+      mode["eigenvalues"] = std::vector<double>(m.eigenvalues.begin(), m.eigenvalues.end());
+      mode["negative"] = m.negative;
+      mode["peak_position"] = {m.peak_position.x(), m.peak_position.y(), m.peak_position.z()};
+      mode["volume_share"] = m.volume_share;
+      mode["file"] = mode_file;
+    } else {
+      mode["reason"] = m.message;
+    }
+    mode["shift"] = m.shift;
+    mode["factorizations"] = m.factorizations;
+    mode["solves"] = m.solves;
+    mode["seconds"] = m.seconds;
+    s.extra["stability"]["unstable_mode"] = mode;
+  }
   if (unstable_steps > 0) {
     s.extra["notes"].push_back(
         std::to_string(unstable_steps) + " of " + std::to_string(steps) +

@@ -82,6 +82,23 @@ class TetRunModel final : public RunModel {
   std::optional<JacobianRangeAt> committed_jacobian_range() const override {
     return committed_jacobian_range_of(*model_.problem);
   }
+  FreeDofLayout free_dof_layout() const override {
+    const tet::TetProblem& problem = *model_.problem;
+    FreeDofLayout layout;
+    layout.node_positions = model_.mesh->nodes;
+    layout.node_volumes = problem.lumped_volumes();
+    layout.node_of.assign(static_cast<std::size_t>(problem.size()), -1);
+    layout.component_of.assign(static_cast<std::size_t>(problem.size()), -1);
+    for (int node = 0; node < model_.mesh->num_nodes(); ++node) {
+      for (int c = 0; c < 3; ++c) {
+        if (const int i = problem.free_index(node, c); i >= 0) {
+          layout.node_of[static_cast<std::size_t>(i)] = node;
+          layout.component_of[static_cast<std::size_t>(i)] = c;
+        }
+      }
+    }
+    return layout;
+  }
   double current_volume() const override {
     return model_.problem->current_volume(model_.problem->committed_displacement());
   }

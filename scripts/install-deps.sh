@@ -6,6 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev                     # dense per-point tensors, sparse matrices
+  libspectra-dev                    # Lanczos eigenpairs of the tangent (the unstable mode)
   libsuitesparse-dev libopenblas0-pthread  # CHOLMOD (sparse Cholesky), UMFPACK fallback; fast BLAS for them
   libocct-data-exchange-dev libocct-modeling-algorithms-dev
   libocct-foundation-dev libocct-modeling-data-dev libtbb-dev  # OpenCASCADE: IGES read/write

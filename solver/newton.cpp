@@ -146,6 +146,7 @@ NewtonResult NewtonSolver::solve(NonlinearProblem& problem, Eigen::VectorXd& u) 
     statistics_.iterations += result.iterations;
     statistics_.residual_evaluations += result.residual_evaluations;
     statistics_.tangent_evaluations += result.tangent_evaluations;
+    last_ends_on_indefinite_tangent_ = ends_on_indefinite_tangent(result);
     return result;
   };
 

@@ -148,6 +148,9 @@ class NewtonSolver {
   const NewtonSettings& settings() const { return settings_; }
   const NewtonStatistics& statistics() const { return statistics_; }
   const LinearSolver& linear_solver() const { return linear_solver_; }
+  // ends_on_indefinite_tangent of the last solve's result, for a problem's commit_step (which runs
+  // before the time stepper hands the result on).
+  bool last_solve_ends_on_indefinite_tangent() const { return last_ends_on_indefinite_tangent_; }
 
  private:
   // evaluate() with timing, counting and a check that an ok residual is finite.
@@ -163,6 +166,7 @@ class NewtonSolver {
   Eigen::VectorXd trial_residual_;
   Eigen::VectorXd rhs_;
   Eigen::VectorXd du_;
+  bool last_ends_on_indefinite_tangent_ = false;
 };
 
 }  // namespace isomuscle::solver

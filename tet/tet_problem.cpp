@@ -418,4 +418,27 @@ double TetProblem::current_volume(const Eigen::VectorXd& u_full) const {
   return v;
 }
 
+Eigen::VectorXd TetProblem::lumped_volumes() const {
+  const TetMesh& mesh = space_.mesh();
+  const int nen = space_.nodes_per_element();
+  Eigen::VectorXd volumes = Eigen::VectorXd::Zero(mesh.num_nodes());
+  Eigen::VectorXd diagonal(nen);
+  for (int e = 0; e < space_.num_elements(); ++e) {
+    diagonal.setZero();
+    double element_volume = 0.0;
+    for (int q = 0; q < space_.points_per_element(); ++q) {
+      const auto N = space_.values(q);
+      const double dv = space_.dv(e)[q];
+      element_volume += dv;
+      for (int a = 0; a < nen; ++a)
+        diagonal[a] += N[a] * N[a] * dv;
+    }
+    const auto nodes = mesh.element(e);
+    const double scale = element_volume / diagonal.sum();
+    for (int a = 0; a < nen; ++a)
+      volumes[nodes[a]] += diagonal[a] * scale;
+  }
+  return volumes;
+}
+
 }  // namespace isomuscle::tet

@@ -125,6 +125,11 @@ class TetProblem : public solver::NonlinearProblem {
   std::vector<Eigen::Matrix3d> deformation_gradients(const Eigen::VectorXd& u_full) const;
   // Current volume int J dV (m^3).
   double current_volume(const Eigen::VectorXd& u_full) const;
+  // Lumped reference volume of every node (m^3), by the diagonal scaling of Hinton, Rock and
+  // Zienkiewicz (Earthquake Eng. Struct. Dyn. 4, 1976): element e gives node a the share
+  // V_e int N_a^2 dV / sum_b int N_b^2 dV. Row sums would give the vertices of a 10-node
+  // tetrahedron negative volumes; these are positive, and they sum to the mesh volume.
+  Eigen::VectorXd lumped_volumes() const;
   const Eigen::VectorXd& external_force() const { return f_ext_; }
   // Internal force at ALL DOFs (3 per node, N) for free values u: an assembly pass without
   // tangent. The trial history is scratch; the committed state does not change.

@@ -145,6 +145,8 @@ TEST_F(SlowRunCli, SmallBarrelContractionWritesEveryResult) {
   EXPECT_EQ(s["stability"]["unstable_steps"], 0);
   EXPECT_TRUE(s["stability"]["first_unstable_time"].is_null());
   EXPECT_FALSE(s["stability"]["last_step_unstable"].get<bool>());
+  EXPECT_FALSE(s["stability"].contains("unstable_mode"));  // nothing to diagnose, no eigensolve
+  EXPECT_FALSE(fs::exists(out / "unstable_mode.csv"));
   EXPECT_GE(s["max_jacobian"]["value"].get<double>(), 1.0);
 
   EXPECT_TRUE(fs::exists(out / "fields.xdmf"));
@@ -546,6 +548,40 @@ TEST_F(SlowRunCli, CompressedColumnReportsItsUnstableEquilibria) {
                                                   " of 20 converged "
                                                   "steps") != std::string::npos;
   EXPECT_TRUE(noted) << s["notes"].dump(2);
+
+  // The mode at the first unstable equilibrium, from the tangent assembled there: Euler buckling.
+  // The round column buckles sideways in any direction, so the lowest eigenvalue is a negative
+  // pair (measured: -1.03e5 Pa/m^2 twice, the next +6.6e5); its mode moves the column sideways
+  // (96 % of the mass-weighted squares measured), most at mid-length and symmetric about it, the
+  // clamped-clamped Euler shape, spread over the whole column (69 % of the volume measured).
+  const nlohmann::json& mode = stability["unstable_mode"];
+  ASSERT_TRUE(mode.is_object()) << stability.dump(2);
+  ASSERT_TRUE(mode["found"].get<bool>()) << mode.dump(2);
+  EXPECT_DOUBLE_EQ(mode["time"].get<double>(), first);
+  const std::vector<double> lambda = mode["eigenvalues"].get<std::vector<double>>();
+  ASSERT_EQ(lambda.size(), 3u);
+  EXPECT_EQ(mode["negative"].get<int>(), 2);
+  EXPECT_LT(lambda[0], 0.0);
+  EXPECT_NEAR(lambda[1], lambda[0], 1e-6 * std::abs(lambda[0]));
+  EXPECT_GT(lambda[2], 0.0);
+  EXPECT_GT(mode["volume_share"].get<double>(), 0.3);
+  const Table m = read_csv(out / "unstable_mode.csv");
+  ASSERT_EQ(m.rows.size(), 100u);  // the nodes off the two clamped ends
+  double sideways = 0.0, axial = 0.0, z_min = 1.0, z_max = -1.0;
+  for (const auto& row : m.rows) {
+    const double v = row[m.column("volume")];  // mass-weighted squares
+    sideways += v * (std::pow(row[m.column("mode_x")], 2) + std::pow(row[m.column("mode_y")], 2));
+    axial += v * std::pow(row[m.column("mode_z")], 2);
+    z_min = std::min(z_min, row[m.column("z")]);
+    z_max = std::max(z_max, row[m.column("z")]);
+  }
+  EXPECT_GT(sideways, 0.85 * (sideways + axial));
+  const double peak_z = mode["peak_position"][2].get<double>();
+  EXPECT_GT(peak_z, z_min + 0.25 * (z_max - z_min));
+  EXPECT_LT(peak_z, z_max - 0.25 * (z_max - z_min));
+  EXPECT_NE(r.err.find("s: the tangent at this equilibrium: lowest eigenvalue -"),
+            std::string::npos)
+      << r.err;
 }
 
 // The displacement formulation with a nearly incompressible law (lu2010: kappa/mu ~ 1e4) is

@@ -68,6 +68,12 @@ TEST(NewtonConvergence, PassiveStretchOfShrinkBarrelIsQuadratic) {
   const double V = problem.current_volume(problem.committed_displacement());
   std::printf("volume change %.2e (relative)\n", V / V0 - 1.0);
   EXPECT_LT(std::abs(V / V0 - 1.0), 1e-4);
+  // The lumped volumes of the unstable mode's metric: int R_a dV per node, positive also for the
+  // nodes merged on the collapsed centreline, and summing to V0 (partition of unity).
+  const Eigen::VectorXd lumped = problem.lumped_volumes();
+  ASSERT_EQ(lumped.size(), dofs.num_nodes());
+  EXPECT_GT(lumped.minCoeff(), 0.0);
+  EXPECT_NEAR(lumped.sum(), V0, 1e-12 * V0);
 }
 
 }  // namespace

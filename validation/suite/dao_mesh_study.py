@@ -18,7 +18,7 @@ and writes OUT/dao_mesh_study.md with these tables:
 * u_y across the width at four heights (the mean over the tessellation or mesh points within
   0.5 mm of the height, in 2 mm bins of x): the fan's cupping, and whether it wrinkles;
 * the Newton and linear-solver work of each run (summary.json), with the converged steps whose
-  equilibrium is unstable (summary.json's stability).
+  equilibrium is unstable and the mode of the first (summary.json's stability).
 
 Usage: /usr/bin/python3 validation/suite/dao_mesh_study.py [--out OUT] [--jobs N] [--reuse]
        [--meshes iga:3,15,7 iga:3,15,3:1,0,2 tet:0.00075 tet:0.00075:v0,0.0003,0.002 grid:4,8,8 ...]
@@ -339,6 +339,14 @@ def main():
         st = s.get("stability", {})  # runs before 2026-12-06 have none
         unstable = ("%d (%.4g s)" % (st["unstable_steps"], st["first_unstable_time"])
                     if st.get("unstable_steps") else "0" if st else "-")
+        mode = st.get("unstable_mode")  # runs made before the mode was computed have none
+        if mode and mode.get("found"):
+            unstable += "; mode: lambda %.3g Pa/m^2 (%d of 3 negative), largest at (%s) mm, %.2g %% of V" % (
+                mode["eigenvalues"][0], mode["negative"],
+                ", ".join("%.1f" % (1e3 * c) for c in mode["peak_position"]),
+                100.0 * mode["volume_share"])
+        elif mode:
+            unstable += "; no mode: " + mode.get("reason", "")
         work.append("| %s | %d | %d | %d | %d | %d (%.0f s) | %d (%.0e, %.0f s) | %s | %.0f s |" % (
             m, s["steps"], s["newton_iterations"], len(s["step_cuts"]), ls.get("cholesky_failures", 0),
             ls.get("lu_fallbacks", 0), ls.get("lu_seconds", 0.0),
