@@ -113,7 +113,10 @@ TEST_P(UnstableModeOfModel, LayoutAndLowestModesAtTheReferenceState) {
               mode.peak_position.z(), mode.volume_share);
 }
 
-INSTANTIATE_TEST_SUITE_P(BothDiscretisations, UnstableModeOfModel, ::testing::Values("iga", "tet"));
+INSTANTIATE_TEST_SUITE_P(Iga, UnstableModeOfModel, ::testing::Values("iga"));
+// Named Gmsh...: its mesh comes from gmsh, whose leaks the sanitizer pass does not check
+// (tests/CMakeLists.txt, scripts/test.sh).
+INSTANTIATE_TEST_SUITE_P(GmshTetrahedra, UnstableModeOfModel, ::testing::Values("tet"));
 
 }  // namespace
 }  // namespace isomuscle::io
