@@ -341,8 +341,8 @@ def main():
                     if st.get("unstable_steps") else "0" if st else "-")
         mode = st.get("unstable_mode")  # runs made before the mode was computed have none
         if mode and mode.get("found"):
-            unstable += "; mode: lambda %.3g Pa/m^2 (%d of 3 negative), largest at (%s) mm, %.2g %% of V" % (
-                mode["eigenvalues"][0], mode["negative"],
+            unstable += "; mode: lambda %.3g Pa/m^2 (%d of %d negative), largest at (%s) mm, %.2g %% of V" % (
+                mode["eigenvalues"][0], mode["negative"], len(mode["eigenvalues"]),
                 ", ".join("%.1f" % (1e3 * c) for c in mode["peak_position"]),
                 100.0 * mode["volume_share"])
         elif mode:
