@@ -9,6 +9,8 @@ clamped edge) crowds into the bin next to it.
 
 Usage: /usr/bin/python3 validation/suite/mode_profile.py RUN_DIR [--axis x|y|z] [--bins N]
        [--distance-to X,Y,Z]   (bins of the distance to a point instead of a coordinate, mm)
+       [--nodes-near X,Z --within R]   (then also: the nodes within R mm of the line through
+                                        (X, ., Z) along y, by z and y, with their mode vectors)
 """
 import argparse
 import json
@@ -25,6 +27,9 @@ def main():
     parser.add_argument("--bins", type=int, default=10)
     parser.add_argument("--distance-to", default=None,
                         help="X,Y,Z in mm: bin by the distance to this point")
+    parser.add_argument("--nodes-near", default=None,
+                        help="X,Z in mm: list the nodes near the line along y through (X, Z)")
+    parser.add_argument("--within", type=float, default=0.5, help="mm, for --nodes-near")
     args = parser.parse_args()
     path = os.path.join(args.run_dir, "unstable_mode.csv")
     if not os.path.exists(path):
@@ -66,6 +71,16 @@ def main():
         print("| %.2f–%.2f | %d | %.3f | %.1f %% | %.0f / %.0f / %.0f %% |" % (
             edges[b], edges[b + 1], inside.sum(), np.linalg.norm(m[inside], axis=1).max(),
             100.0 * w.sum() / total, *(100.0 * w / max(w.sum(), 1e-300))))
+
+    if args.nodes_near:
+        x0, z0 = (float(c) for c in args.nodes_near.split(","))
+        near = np.where(np.hypot(X[:, 0] - x0, X[:, 2] - z0) <= args.within)[0]
+        near = near[np.lexsort((X[near, 1], X[near, 2]))]
+        print()
+        print("| x, y, z (mm) | mode_x | mode_y | mode_z |")
+        print("|---|---|---|---|")
+        for i in near:
+            print("| %.2f, %.2f, %.2f | %+.3f | %+.3f | %+.3f |" % (*X[i], *m[i]))
 
 
 if __name__ == "__main__":
