@@ -23,6 +23,7 @@
 #include "continuum/formulation.hpp"
 #include "continuum/jacobian_range.hpp"
 #include "continuum/mixed_bases.hpp"
+#include "continuum/point_ellipticity.hpp"
 #include "continuum/point_state.hpp"
 #include "iga/boundary_conditions.hpp"
 #include "iga/dof_map.hpp"
@@ -137,6 +138,8 @@ class Problem : public solver::NonlinearProblem {
   // Sum over nodes of the force components of a full force vector: the reaction on a supported
   // face is the internal force at its DOFs (N).
   Eigen::Vector3d sum_over_nodes(const Eigen::VectorXd& f_full, std::span<const int> nodes) const;
+  // F at every quadrature point (element-major) of a full displacement vector.
+  std::vector<Eigen::Matrix3d> deformation_gradients(const Eigen::VectorXd& u_full) const;
   // Current volume int J dV of a full displacement vector (m^3).
   double current_volume(const Eigen::VectorXd& u_full) const;
   // Lumped reference volume of every node, int R_a dV summed over its control points (m^3): the
@@ -160,6 +163,9 @@ class Problem : public solver::NonlinearProblem {
   PointState interpolate_state(int e, std::span<const PointState> states,
                                const Eigen::Vector3d& xi) const;
   Tessellation tessellate(const Eigen::VectorXd& u_full, int subdivisions) const;
+  // Strong ellipticity of the law at every quadrature point of the committed state, evaluated as
+  // the step that reached it evaluated the law (continuum/point_ellipticity.hpp); element-major.
+  std::vector<continuum::PointEllipticity> committed_ellipticity(int normals = 96) const;
 
  private:
   // use_base: mixed formulation, update p~, J~ from the current base (when there is one) instead

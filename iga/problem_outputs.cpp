@@ -9,25 +9,44 @@
 
 namespace isomuscle::iga {
 
-// V = int J dV over the reference configuration (J = det F at every quadrature point), m^3.
-double Problem::current_volume(const Eigen::VectorXd& u_full) const {
+// F = I + sum_a u_a (x) grad R_a at every quadrature point, element-major.
+std::vector<Eigen::Matrix3d> Problem::deformation_gradients(const Eigen::VectorXd& u_full) const {
   if (u_full.size() != dofs_.num_dofs()) {
-    throw std::invalid_argument("current_volume: vector of size " + std::to_string(u_full.size()) +
-                                ", expected " + std::to_string(dofs_.num_dofs()));
+    throw std::invalid_argument("deformation_gradients: vector of size " +
+                                std::to_string(u_full.size()) + ", expected " +
+                                std::to_string(dofs_.num_dofs()));
   }
-  double volume = 0.0;
+  const int nqp = space_.points_per_element();
+  std::vector<Eigen::Matrix3d> F(static_cast<std::size_t>(space_.num_elements()) * nqp,
+                                 Eigen::Matrix3d::Identity());
   for (int e = 0; e < space_.num_elements(); ++e) {
     const auto cps = space_.control_points(e);
-    for (int q = 0; q < space_.points_per_element(); ++q) {
+    for (int q = 0; q < nqp; ++q) {
       const auto grad = space_.gradients(e, q);
-      Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
-      for (std::size_t a = 0; a < cps.size(); ++a) {
-        F.noalias() += u_full.segment<3>(3 * dofs_.node(cps[a])) * grad[a].transpose();
-      }
-      volume += F.determinant() * space_.dv(e, q);
+      Eigen::Matrix3d& Fq = F[static_cast<std::size_t>(e) * nqp + q];
+      for (std::size_t a = 0; a < cps.size(); ++a)
+        Fq.noalias() += u_full.segment<3>(3 * dofs_.node(cps[a])) * grad[a].transpose();
     }
   }
+  return F;
+}
+
+// V = int J dV over the reference configuration (J = det F at every quadrature point), m^3.
+double Problem::current_volume(const Eigen::VectorXd& u_full) const {
+  const std::vector<Eigen::Matrix3d> F = deformation_gradients(u_full);
+  const int nqp = space_.points_per_element();
+  double volume = 0.0;
+  for (int e = 0; e < space_.num_elements(); ++e) {
+    for (int q = 0; q < nqp; ++q)
+      volume += F[static_cast<std::size_t>(e) * nqp + q].determinant() * space_.dv(e, q);
+  }
   return volume;
+}
+
+std::vector<continuum::PointEllipticity> Problem::committed_ellipticity(int normals) const {
+  return continuum::ellipticity_at_points(law_, deformation_gradients(committed_full_), fibres_,
+                                          history_previous_, committed_time_, committed_dt_,
+                                          normals, options_.threads);
 }
 
 Eigen::VectorXd Problem::lumped_volumes() const {

@@ -108,6 +108,9 @@ class IgaRunModel final : public RunModel {
   std::optional<JacobianRangeAt> committed_jacobian_range() const override {
     return committed_jacobian_range_of(*model_.problem);
   }
+  MaterialEllipticityScan committed_ellipticity(int normals) const override {
+    return committed_ellipticity_of(*model_.problem, normals);
+  }
   FreeDofLayout free_dof_layout() const override {
     const iga::DofMap& dofs = *model_.dofs;
     FreeDofLayout layout;

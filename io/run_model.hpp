@@ -49,6 +49,38 @@ struct FreeDofLayout {
   std::vector<int> node_of, component_of;
 };
 
+// The law's strong ellipticity at the quadrature points of a state
+// (continuum/point_ellipticity.hpp) with their reference positions (m), and the law's shear modulus
+// mu (Pa) to measure it by.
+struct EllipticityAt {
+  double smallest = 0.0;  // e, Pa (NaN: not evaluated)
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+};
+
+struct MaterialEllipticityScan {
+  std::vector<EllipticityAt> points;
+  double shear_modulus = 0.0;
+  int normals = 0;
+};
+
+// The committed state's scan of a discretisation's problem (iga::Problem, tet::TetProblem:
+// committed_ellipticity(normals), space().position(element, point), law()).
+template <class Problem>
+MaterialEllipticityScan committed_ellipticity_of(const Problem& problem, int normals) {
+  const auto points = problem.committed_ellipticity(normals);
+  const int nqp = problem.space().points_per_element();
+  MaterialEllipticityScan scan;
+  scan.points.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const int e = static_cast<int>(i) / nqp, q = static_cast<int>(i) % nqp;
+    scan.points.push_back({points[i].smallest, points[i].normal, problem.space().position(e, q)});
+  }
+  scan.shear_modulus = problem.law().shear_modulus();
+  scan.normals = normals;
+  return scan;
+}
+
 class RunModel {
  public:
   virtual ~RunModel() = default;
@@ -92,6 +124,9 @@ class RunModel {
   virtual std::optional<JacobianRangeAt> committed_jacobian_range() const = 0;
   // The free unknowns as mesh points (computed when called).
   virtual FreeDofLayout free_dof_layout() const = 0;
+  // The law's strong ellipticity at every quadrature point of the committed state (normals: the
+  // coarse set of the search; computed when called).
+  virtual MaterialEllipticityScan committed_ellipticity(int normals) const = 0;
 };
 
 }  // namespace isomuscle::io

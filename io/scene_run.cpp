@@ -12,6 +12,7 @@
 
 #include "io/csv_writer.hpp"
 #include "io/iga_run_model.hpp"
+#include "io/material_ellipticity.hpp"
 #include "io/run_model.hpp"
 #include "io/tet_run_model.hpp"
 #include "io/unstable_mode.hpp"
@@ -321,6 +322,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   // The mode of the first unstable equilibrium (unstable_mode.hpp), computed before its commit.
   std::optional<UnstableMode> unstable_mode;
   const std::string mode_file = "unstable_mode.csv";
+  // Whether the law itself lost stability there (material_ellipticity.hpp), or why not known.
+  std::optional<MaterialEllipticity> material_ellipticity;
+  std::string material_ellipticity_failure;
   std::vector<double> probe_row;
   std::optional<std::vector<double>> last_probes;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
@@ -343,6 +347,19 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         UnstableMode failed;
         failed.message = e.what();
         return failed;
+      }
+    };
+    const auto assess_material = [&]() {
+      try {
+        const auto begin = Clock::now();
+        constexpr int normals = 96;  // the coarse set; the refined search is exact to round-off
+        MaterialEllipticity m = assess_material_ellipticity(
+            model->committed_ellipticity(normals),
+            unstable_mode && unstable_mode->ok ? &*unstable_mode : nullptr);
+        m.seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+        material_ellipticity = m;
+      } catch (const std::exception& e) {
+        material_ellipticity_failure = e.what();
       }
     };
     SteppedProblem stepped_problem(
@@ -398,6 +415,11 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
           if (unstable_mode)
             log("note: t = " + format_run_time(r.time) +
                 " s: the tangent at this equilibrium: " + describe(*unstable_mode, mode_file));
+          assess_material();
+          log("note: t = " + format_run_time(r.time) + " s: " +
+              (material_ellipticity ? describe(*material_ellipticity)
+                                    : "the material's ellipticity could not be assessed: " +
+                                          material_ellipticity_failure));
         }
       }
       write_newton_rows(r.step, r.time, r.dt, n, true);
@@ -484,6 +506,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
       mode["negative"] = m.negative;
       mode["peak_position"] = {m.peak_position.x(), m.peak_position.y(), m.peak_position.z()};
       mode["volume_share"] = m.volume_share;
+      mode["radius"] = m.radius;
       mode["file"] = mode_file;
     } else {
       mode["reason"] = m.message;
@@ -493,6 +516,33 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     mode["solves"] = m.solves;
     mode["seconds"] = m.seconds;
     s.extra["stability"]["unstable_mode"] = mode;
+  }
+  if (material_ellipticity) {
+    const MaterialEllipticity& m = *material_ellipticity;
+    const auto point = [&](const EllipticityAt& p) {
+      return Json{{"smallest", p.smallest},
+                  {"smallest_over_shear_modulus", p.smallest / m.shear_modulus},
+                  {"position", {p.position.x(), p.position.y(), p.position.z()}},
+                  {"normal", {p.normal.x(), p.normal.y(), p.normal.z()}}};
+    };
+    Json e{{"time", optional_time(first_unstable)},
+           {"strongly_elliptic", m.not_elliptic == 0},
+           {"points", m.points},
+           {"not_elliptic", m.not_elliptic},
+           {"not_evaluated", m.not_evaluated},
+           {"shear_modulus", m.shear_modulus},
+           {"normals", m.normals},
+           {"smallest", point(m.smallest)},
+           {"seconds", m.seconds}};
+    if (m.near_mode) {
+      e["near_mode"] = point(m.smallest_near_mode);
+      e["near_mode"]["radius"] = m.radius;
+      e["near_mode"]["points"] = m.near_mode_points;
+    }
+    s.extra["stability"]["material_ellipticity"] = e;
+  } else if (first_unstable) {
+    s.extra["stability"]["material_ellipticity"] =
+        Json{{"time", optional_time(first_unstable)}, {"reason", material_ellipticity_failure}};
   }
   if (unstable_steps > 0) {
     s.extra["notes"].push_back(

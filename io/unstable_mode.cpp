@@ -1,6 +1,7 @@
 #include "io/unstable_mode.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -52,20 +53,25 @@ UnstableMode compute_unstable_mode(solver::NonlinearProblem& problem, const Eige
     nodal[node][layout.component_of[static_cast<std::size_t>(i)]] = modes.vectors(i, 0);
     has_free[node] = 1;
   }
-  double peak = 0.0, sum_e2_over_v = 0.0;
+  double peak = 0.0;
   for (std::size_t a = 0; a < nodes; ++a) {
-    const double amplitude = nodal[a].norm();
-    if (amplitude > peak) {
+    if (const double amplitude = nodal[a].norm(); amplitude > peak) {
       peak = amplitude;
       mode.peak_position = layout.node_positions[a];
     }
-    if (has_free[a]) {
-      const double v = layout.node_volumes[static_cast<Eigen::Index>(a)];
-      const double e = v * amplitude * amplitude;
-      sum_e2_over_v += e * e / v;
-    }
+  }
+  // e_n = V_n |phi_n|^2 sums to 1 (the vectors are W-normalised).
+  double sum_e2_over_v = 0.0, radius2 = 0.0;
+  for (std::size_t a = 0; a < nodes; ++a) {
+    if (!has_free[a])
+      continue;
+    const double v = layout.node_volumes[static_cast<Eigen::Index>(a)];
+    const double e = v * nodal[a].squaredNorm();
+    sum_e2_over_v += e * e / v;
+    radius2 += e * (layout.node_positions[a] - mode.peak_position).squaredNorm();
   }
   mode.volume_share = 1.0 / (layout.node_volumes.sum() * sum_e2_over_v);
+  mode.radius = std::sqrt(radius2);
 
   CsvWriter csv(csv_path, {"x", "y", "z", "volume", "mode_x", "mode_y", "mode_z"});
   for (std::size_t a = 0; a < nodes; ++a) {
@@ -83,13 +89,15 @@ UnstableMode compute_unstable_mode(solver::NonlinearProblem& problem, const Eige
 std::string describe(const UnstableMode& mode, const std::string& csv_name) {
   if (!mode.ok)
     return "no mode: " + mode.message;
-  char text[320];
+  char text[360];
   const Eigen::Vector3d& p = mode.peak_position;
   std::snprintf(text, sizeof text,
                 "lowest eigenvalue %.4g Pa/m^2 (%d of the %d lowest negative); the mode is largest "
-                "at (%.4g, %.4g, %.4g) m and occupies %.2g %% of the volume (%s, %.3g s)",
+                "at (%.4g, %.4g, %.4g) m, extends %.2g m about it and occupies %.2g %% of the "
+                "volume (%s, %.3g s)",
                 mode.eigenvalues[0], mode.negative, static_cast<int>(mode.eigenvalues.size()),
-                p.x(), p.y(), p.z(), 100.0 * mode.volume_share, csv_name.c_str(), mode.seconds);
+                p.x(), p.y(), p.z(), mode.radius, 100.0 * mode.volume_share, csv_name.c_str(),
+                mode.seconds);
   return text;
 }
 

@@ -16,7 +16,8 @@
 // The share of the volume is the participation ratio of the mode's mass-weighted square: with
 // e_n = V_n |phi_n|^2 (summing to 1 over the nodes n),
 //   share = 1 / (V sum_n e_n^2 / V_n),
-// which is 1 for a uniform mode and v / V for a mode spread evenly over a part of volume v.
+// which is 1 for a uniform mode and v / V for a mode spread evenly over a part of volume v. Its
+// extent is the radius of gyration of e_n about the peak, radius^2 = sum_n e_n |X_n - X_peak|^2.
 #include <Eigen/Core>
 #include <filesystem>
 #include <string>
@@ -34,6 +35,7 @@ struct UnstableMode {
   double shift = 0.0;                                       // the Lanczos shift used (Pa/m^2)
   Eigen::Vector3d peak_position = Eigen::Vector3d::Zero();  // reference position (m)
   double volume_share = 0.0;                                // in (0, 1]
+  double radius = 0.0;                                      // about the peak, m
   int factorizations = 0;
   int solves = 0;
   double seconds = 0.0;
@@ -52,8 +54,8 @@ UnstableMode compute_unstable_mode(solver::NonlinearProblem& problem, const Eige
                                    const std::filesystem::path& csv_path, int count = 3);
 
 // "lowest eigenvalue -1.03e+05 Pa/m^2 (2 of the 3 lowest negative); the mode is largest at
-// (x, y, z) m and occupies 69 % of the volume (unstable_mode.csv, 0.0179 s)", or "no mode: " and
-// why, for the log.
+// (x, y, z) m, extends 0.012 m about it and occupies 69 % of the volume (unstable_mode.csv,
+// 0.0179 s)", or "no mode: " and why, for the log.
 std::string describe(const UnstableMode& mode, const std::string& csv_name);
 
 }  // namespace isomuscle::io

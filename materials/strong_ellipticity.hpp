@@ -14,7 +14,10 @@
 //   e = min over N, and over unit a ⊥ m(N), of a · Q(N) a      (Pa; > 0: strongly elliptic)
 //
 // searched on a Fibonacci set of normals over the half sphere (Q(-N) = Q(N)). At F = I with an
-// isotropic law e is the shear modulus.
+// isotropic law e is the shear modulus. The refined search starts from a coarse set and walks
+// downhill from its best normals (a pattern search on the sphere), which finds the minimum to
+// round-off at a tenth of the cost of a fine set: what a scan of every quadrature point of a
+// body needs (continuum/point_ellipticity.hpp).
 #include <Eigen/Core>
 
 #include "materials/material_law.hpp"
@@ -34,5 +37,11 @@ Eigen::Matrix3d acoustic_tensor(const Eigen::Matrix3d& F, const Eigen::Matrix3d&
 // curvature scale). Throws std::invalid_argument when normals < 1 or det F <= 0.
 EllipticityResult isochoric_ellipticity(const Eigen::Matrix3d& F, const Eigen::Matrix3d& S,
                                         const Matrix6d& tangent, int normals = 2000);
+
+// e from `normals` Fibonacci normals (at least 8), then a pattern search on the sphere from the
+// best few of them: steps of the coarse spacing along two tangent directions, halved when no step
+// descends, down to 1e-8 rad. Same exceptions.
+EllipticityResult refined_isochoric_ellipticity(const Eigen::Matrix3d& F, const Eigen::Matrix3d& S,
+                                                const Matrix6d& tangent, int normals = 96);
 
 }  // namespace isomuscle::materials

@@ -418,6 +418,12 @@ double TetProblem::current_volume(const Eigen::VectorXd& u_full) const {
   return v;
 }
 
+std::vector<continuum::PointEllipticity> TetProblem::committed_ellipticity(int normals) const {
+  return continuum::ellipticity_at_points(law_, deformation_gradients(committed_full_), fibres_,
+                                          history_previous_, committed_time_, committed_dt_,
+                                          normals, options_.threads);
+}
+
 Eigen::VectorXd TetProblem::lumped_volumes() const {
   const TetMesh& mesh = space_.mesh();
   const int nen = space_.nodes_per_element();

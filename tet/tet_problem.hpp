@@ -25,6 +25,7 @@
 #include "continuum/formulation.hpp"
 #include "continuum/jacobian_range.hpp"
 #include "continuum/mixed_bases.hpp"
+#include "continuum/point_ellipticity.hpp"
 #include "continuum/point_state.hpp"
 #include "materials/material_law.hpp"
 #include "solver/element_colouring.hpp"
@@ -130,6 +131,9 @@ class TetProblem : public solver::NonlinearProblem {
   // V_e int N_a^2 dV / sum_b int N_b^2 dV. Row sums would give the vertices of a 10-node
   // tetrahedron negative volumes; these are positive, and they sum to the mesh volume.
   Eigen::VectorXd lumped_volumes() const;
+  // Strong ellipticity of the law at every quadrature point of the committed state, evaluated as
+  // the step that reached it evaluated the law (continuum/point_ellipticity.hpp); element-major.
+  std::vector<continuum::PointEllipticity> committed_ellipticity(int normals = 96) const;
   const Eigen::VectorXd& external_force() const { return f_ext_; }
   // Internal force at ALL DOFs (3 per node, N) for free values u: an assembly pass without
   // tangent. The trial history is scratch; the committed state does not change.

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "materials/material_factory.hpp"
+#include "materials/strong_ellipticity.hpp"
 #include "solver/newton.hpp"
 #include "tet/tet_fibres.hpp"
 #include "tet/tet_mesh.hpp"
@@ -244,6 +245,53 @@ TEST(TetProblem, LumpedVolumesArePositiveAndSumToTheVolume) {
         quadrature_volume += space.dv(e)[q];
     EXPECT_NEAR(v.sum(), quadrature_volume, 1e-12 * quadrature_volume) << "order " << order;
     EXPECT_NEAR(v.sum(), mesh_volume(mesh), 1e-6 * mesh_volume(mesh)) << "order " << order;
+  }
+}
+
+// The strong-ellipticity scan of a committed state (TetProblem::committed_ellipticity): distorted,
+// curved 10-node elements deformed homogeneously (a linear field, reproduced exactly), the active
+// tang2009 muscle after one step. Every quadrature point gives what the law's isochoric part gives
+// at that F and the pre-step history (iga's EllipticityScan test is the same check on a NURBS
+// block).
+TEST(TetProblem, EllipticityScanGivesTheLawsValueAtEveryPoint) {
+  const TetMesh mesh = distorted_box(2, true);
+  const TetSpace space(mesh);
+  const auto law = materials::make_material("tang2009");
+  const std::vector<Eigen::Vector3d> fibres = constant_fibres(space, Eigen::Vector3d(0, 0.6, 0.8));
+  TetProblem problem(space, *law, fibres, {});
+  ASSERT_EQ(problem.size(), 3 * mesh.num_nodes());
+  Eigen::Matrix3d F;
+  F << 1.05, 0.04, 0.0, 0.0, 0.85, 0.02, 0.03, 0.0, 1.1;
+  Eigen::VectorXd u(problem.size());
+  for (int node = 0; node < mesh.num_nodes(); ++node)
+    for (int c = 0; c < 3; ++c)
+      u[problem.free_index(node, c)] = ((F - Eigen::Matrix3d::Identity()) * mesh.nodes[node])[c];
+  const double dt = 2.5e-3;
+  problem.begin_step(dt, dt);
+  Eigen::VectorXd residual;
+  ASSERT_TRUE(problem.evaluate(u, residual, nullptr).ok);
+  problem.commit_step(u);
+
+  const std::vector<continuum::PointEllipticity> scan = problem.committed_ellipticity();
+  ASSERT_EQ(scan.size(), fibres.size());
+  ASSERT_EQ(scan.size(),
+            static_cast<std::size_t>(space.num_elements() * space.points_per_element()));
+  std::vector<double> history(static_cast<std::size_t>(law->history_size())), trial(history);
+  law->initial_history(history);
+  for (std::size_t p = 0; p < scan.size(); ++p) {
+    materials::PointInput in;
+    in.F = F;
+    in.fibre = fibres[p];
+    in.time = dt;
+    in.dt = dt;
+    in.history = history;
+    materials::PointResult result;
+    result.history = trial;
+    ASSERT_EQ(law->evaluate_isochoric(in, result, true), materials::PointStatus::ok);
+    ASSERT_NEAR(scan[p].smallest,
+                materials::refined_isochoric_ellipticity(F, result.S, result.tangent).smallest,
+                1e-9 * law->shear_modulus())
+        << "point " << p;
   }
 }
 

@@ -18,7 +18,8 @@ and writes OUT/dao_mesh_study.md with these tables:
 * u_y across the width at four heights (the mean over the tessellation or mesh points within
   0.5 mm of the height, in 2 mm bins of x): the fan's cupping, and whether it wrinkles;
 * the Newton and linear-solver work of each run (summary.json), with the converged steps whose
-  equilibrium is unstable and the mode of the first (summary.json's stability).
+  equilibrium is unstable, the mode of the first and whether the law stayed strongly elliptic
+  there (summary.json's stability).
 
 Usage: /usr/bin/python3 validation/suite/dao_mesh_study.py [--out OUT] [--jobs N] [--reuse]
        [--meshes iga:3,15,7 iga:3,15,3:1,0,2 tet:0.00075 tet:0.00075:v0,0.0003,0.002 grid:4,8,8 ...]
@@ -347,6 +348,16 @@ def main():
                 100.0 * mode["volume_share"])
         elif mode:
             unstable += "; no mode: " + mode.get("reason", "")
+        material = st.get("material_ellipticity")  # runs before it was computed have none
+        if material and "smallest" in material:
+            unstable += "; law %s, smallest e %.3g mu" % (
+                "strongly elliptic" if material["strongly_elliptic"] else
+                "NOT elliptic at %d points" % material["not_elliptic"],
+                material["smallest"]["smallest_over_shear_modulus"])
+            if "near_mode" in material:
+                unstable += " (%.3g mu near the mode)" % material["near_mode"]["smallest_over_shear_modulus"]
+        elif material:
+            unstable += "; ellipticity not assessed: " + material.get("reason", "")
         work.append("| %s | %d | %d | %d | %d | %d (%.0f s) | %d (%.0e, %.0f s) | %s | %.0f s |" % (
             m, s["steps"], s["newton_iterations"], len(s["step_cuts"]), ls.get("cholesky_failures", 0),
             ls.get("lu_fallbacks", 0), ls.get("lu_seconds", 0.0),
