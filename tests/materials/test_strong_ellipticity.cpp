@@ -1,9 +1,11 @@
 // Strong ellipticity (materials/strong_ellipticity.hpp): the acoustic tensor is the contraction of
 // dP/dF (checked against central differences of P = F S), the isochoric measure is the shear
-// modulus at rest and sees a compressive prestress, and the chapter-5 muscle stays strongly
+// modulus at rest and sees a compressive prestress, the refined search (a coarse set and a
+// pattern search) finds the minimum of a fine set, and the chapter-5 muscle stays strongly
 // elliptic while its active fibres shorten freely or against a lateral constraint (the states of
-// the DAO's root; validation/suite/README.md, 2026-12-05): its tangent offers no shear band or
-// fold that would make a clamped muscle's solution mesh-dependent.
+// the DAO's root; validation/suite/README.md, 2026-12-05), and both Hill laws while their fibres
+// lengthen or shorten: their tangent offers no shear band or fold that would make a muscle's
+// solution mesh-dependent.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -152,6 +154,42 @@ TEST(StrongEllipticity, Tang2009StaysStronglyEllipticWhileItsFibresShorten) {
           "the way, %.4f mu at the end\n",
           held_across ? "held across" : "free", rate, 1.0 - rate * 0.2, smallest, at_end);
       EXPECT_GT(smallest, 0.999) << (held_across ? "held across" : "free") << ", rate " << rate;
+    }
+  }
+}
+
+// Both Hill laws at full activation, the fibre along z lengthened (eccentric) or shortened at 0.5
+// and 2 /s from rest to stretch 0.8-1.2, free across (F = diag(l^-1/2, l^-1/2, l)), 2.5 ms
+// steps, the isochoric part: the smallest isochoric wave stiffness never falls below 0.999 mu.
+// The fibre terms stiffen waves, lengthening or shortening, they never soften one below the
+// matrix's shear modulus. (Why the DAO's wrinkle site stays strongly elliptic,
+// validation/suite/README.md, 2026-12-06.)
+TEST(StrongEllipticity, HillLawsNeverSoftenAWaveBelowTheShearModulus) {
+  for (const char* model : {"tang2009", "lu2010"}) {
+    const auto law = make_material(model);
+    const double mu = law->shear_modulus();
+    for (const double rate : {-2.0, -0.5, 0.5, 2.0}) {  // 1/s, lengthening > 0
+      std::vector<double> history(static_cast<std::size_t>(law->history_size()));
+      law->initial_history(history);
+      double smallest = INFINITY;
+      const double dt = 2.5e-3;
+      const int steps = 40;  // 0.1 s: stretch 0.8 to 1.2
+      for (int step = 1; step <= steps; ++step) {
+        const double l = 1.0 + rate * step * dt;
+        PointInput in;
+        in.F = Eigen::Vector3d(1.0 / std::sqrt(l), 1.0 / std::sqrt(l), l).asDiagonal();
+        in.time = step * dt;
+        in.dt = dt;
+        in.history = history;
+        const testing::Evaluation at = evaluate(*law, in, Part::isochoric);
+        ASSERT_EQ(at.status, PointStatus::ok) << model << ", step " << step;
+        history = at.trial;
+        const EllipticityResult e = refined_isochoric_ellipticity(in.F, at.S, at.tangent);
+        smallest = std::min(smallest, e.smallest / mu);
+      }
+      std::printf("%s, %+.1f /s to stretch %.2f: smallest isochoric wave stiffness %.4f mu\n",
+                  model, rate, 1.0 + rate * steps * dt, smallest);
+      EXPECT_GT(smallest, 0.999) << model << ", rate " << rate;
     }
   }
 }

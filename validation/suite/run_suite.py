@@ -22,7 +22,9 @@ checks the thesis's claims:
                     of the surface at the joint of the two segments (v = 1/2):
                     u_n(1/2) - (u_n(1/2 - h) + u_n(1/2 + h)) / 2, h = 1/8, the most negative over
                     four points around the section (u = 0, 1/4, 1/2, 3/4); negative is a hollow;
-* every headline number: its change from level 1 to level 2 (converged to 1 % when below 0.01).
+* every headline number: its change from level 1 to level 2 (converged to 1 % when below 0.01);
+  the check names a level whose equilibria turned unstable (summary.json's stability), and the
+  runs table says so for every run.
 
 A level doubles the uniform knot insertion of a direction; where the scene also gives explicit
 knots in that direction (the cone's mesh graded towards its clamped base) it halves every span of
@@ -345,7 +347,8 @@ def main():
                "elements": s["elements"], "dofs": s["dofs"], "steps": s["steps"],
                "newton_iterations": s["newton_iterations"], "step_cuts": len(s["step_cuts"]),
                "wall_s": round(s["wall_seconds"]["total"], 2),
-               "volume_change": s["volume_final_m3"] / s["volume_initial_m3"] - 1.0}
+               "volume_change": s["volume_final_m3"] / s["volume_initial_m3"] - 1.0,
+               "stability": stability_text(s)}
         for h in ex["headline"]:
             row[h] = r["probes"].get(h, float("nan"))
         if ex.get("joint"):
@@ -363,6 +366,22 @@ def main():
     report(args, examples, results, rows)
 
 
+def stability_text(summary):
+    """Whether the run's equilibria stayed stable (summary.json's stability): "stable", or when
+    the first unstable one was reached and whether the law stayed strongly elliptic there (a
+    structural instability, buckling or wrinkling) or not (a material one)."""
+    st = summary.get("stability")
+    if not st:
+        return "-"
+    if not st.get("unstable_steps"):
+        return "stable"
+    text = "unstable from %.4g s" % st["first_unstable_time"]
+    material = st.get("material_ellipticity", {})
+    if "strongly_elliptic" in material:
+        text += " (structural)" if material["strongly_elliptic"] else " (material: law not elliptic)"
+    return text
+
+
 def fmt_mm(x):
     return "%+.4f" % (1e3 * x)
 
@@ -374,11 +393,13 @@ def report(args, examples, results, rows):
              "knot spans L times in the directions listed. Material `tang2009` (Table 5.1), "
              "activation full after 5 ms, 0.2 s.", ""]
     lines += ["## Runs", "", "| example | fibres | level | knot insertion | elements | DOFs | steps | "
-              "Newton | cuts | wall s | dV/V |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+              "Newton | cuts | wall s | dV/V | equilibria |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append("| %s | %s | %d | %s | %d | %d | %d | %d | %d | %.1f | %.1e |" % (
+        lines.append("| %s | %s | %d | %s | %d | %d | %d | %d | %d | %.1f | %.1e | %s |" % (
             r["example"], r["fibres"], r["level"], r["knot_insertion"], r["elements"], r["dofs"],
-            r["steps"], r["newton_iterations"], r["step_cuts"], r["wall_s"], r["volume_change"]))
+            r["steps"], r["newton_iterations"], r["step_cuts"], r["wall_s"], r["volume_change"],
+            r["stability"]))
     total0 = sum(r["wall_s"] for r in rows if r["level"] == args.levels[0])
     lines += ["", "Wall time of level %d (all examples): %.0f s." % (args.levels[0], total0), ""]
     checks = []
@@ -402,9 +423,16 @@ def report(args, examples, results, rows):
                     h, label, " | ".join(fmt_mm(v) for v in vals),
                     " %.2f %% |" % (100 * change) if len(vals) > 1 else ""))
                 if len(vals) > 1:
+                    # A level whose path turned unstable is on an unstable branch from there:
+                    # its numbers may depend on the mesh however fine (README, 2026-12-06).
+                    unstable = ["L%d %s" % (l, stability_text(results[(name, label, l)]["summary"]))
+                                for l in levels[-2:]
+                                if results[(name, label, l)]["summary"].get("stability", {})
+                                .get("unstable_steps")]
                     checks.append(("%s %s %s converged to 1 %% (L%d→L%d)" %
                                    (name, label, h, levels[-2], levels[-1]), change < 0.01,
-                                   "%.2f %%" % (100 * change)))
+                                   "%.2f %%" % (100 * change) +
+                                   ("; " + ", ".join(unstable) if unstable else "")))
         lines.append("")
         if "compare" in ex:
             a, b = ex["compare"]
