@@ -6,9 +6,11 @@
 // * e <= 0 somewhere: the law admits a discontinuity of the displacement gradient (a shear band, a
 //   fold). The continuum problem loses its well-posedness, and finer meshes localise ever more
 //   narrowly: no mesh converges past that state (a regularisation is needed: a length scale).
-// * e > 0 everywhere: the instability is structural (buckling, wrinkling). It has a wavelength of
-//   its own, which the geometry and, for a surface wrinkle of a body without a length scale, the
-//   mesh set; what a mesh resolves of it converges.
+// * e > 0 everywhere: the instability is structural. A buckling of the body has the wavelength
+//   its geometry sets, and refinement converges it. A wrinkle of a compressed free surface (Biot's
+//   surface instability, where the boundary's complementing condition fails, not ellipticity)
+//   has none in a continuum without a length scale: it takes the shortest wavelength the mesh
+//   resolves, so its onset moves with the mesh (the DAO, validation/suite/README.md).
 // e is measured by the law's initial shear modulus mu.
 #include <string>
 
