@@ -20,33 +20,6 @@ int voigt_index(int i, int j) {
   return i + j == 1 ? 3 : (i + j == 3 ? 4 : 5);
 }
 
-// The first elasticity tensor A_iJkL = δ_ik S_JL + F_iI F_kK C_IJKL as a 9 x 9 matrix over the
-// pairs (i, J) and (k, L), so that Q(N)_ik = A_(iJ)(kL) N_J N_L: built once per point, it makes a
-// normal cost 81 products instead of a contraction of C and two products with F.
-using Matrix9d = Eigen::Matrix<double, 9, 9>;
-
-Matrix9d first_elasticity(const Eigen::Matrix3d& F, const Eigen::Matrix3d& S,
-                          const Matrix6d& tangent) {
-  double FC[3][3][3][3] = {};  // F_iI C_IJKL
-  for (int i = 0; i < 3; ++i)
-    for (int J = 0; J < 3; ++J)
-      for (int K = 0; K < 3; ++K)
-        for (int L = 0; L < 3; ++L)
-          for (int I = 0; I < 3; ++I)
-            FC[i][J][K][L] += F(i, I) * tangent(voigt_index(I, J), voigt_index(K, L));
-  Matrix9d A;
-  for (int i = 0; i < 3; ++i)
-    for (int J = 0; J < 3; ++J)
-      for (int k = 0; k < 3; ++k)
-        for (int L = 0; L < 3; ++L) {
-          double a = i == k ? S(J, L) : 0.0;
-          for (int K = 0; K < 3; ++K)
-            a += F(k, K) * FC[i][J][K][L];
-          A(3 * i + J, 3 * k + L) = a;
-        }
-  return A;
-}
-
 Eigen::Matrix3d contract(const Matrix9d& A, const Eigen::Vector3d& N) {
   Eigen::Matrix3d Q;
   for (int i = 0; i < 3; ++i)
@@ -99,6 +72,28 @@ void check_input(const Eigen::Matrix3d& F, int normals, int least, const char* w
 }
 
 }  // namespace
+
+Matrix9d first_elasticity(const Eigen::Matrix3d& F, const Eigen::Matrix3d& S,
+                          const Matrix6d& tangent) {
+  double FC[3][3][3][3] = {};  // F_iI C_IJKL
+  for (int i = 0; i < 3; ++i)
+    for (int J = 0; J < 3; ++J)
+      for (int K = 0; K < 3; ++K)
+        for (int L = 0; L < 3; ++L)
+          for (int I = 0; I < 3; ++I)
+            FC[i][J][K][L] += F(i, I) * tangent(voigt_index(I, J), voigt_index(K, L));
+  Matrix9d A;
+  for (int i = 0; i < 3; ++i)
+    for (int J = 0; J < 3; ++J)
+      for (int k = 0; k < 3; ++k)
+        for (int L = 0; L < 3; ++L) {
+          double a = i == k ? S(J, L) : 0.0;
+          for (int K = 0; K < 3; ++K)
+            a += F(k, K) * FC[i][J][K][L];
+          A(3 * i + J, 3 * k + L) = a;
+        }
+  return A;
+}
 
 Eigen::Matrix3d acoustic_tensor(const Eigen::Matrix3d& F, const Eigen::Matrix3d& S,
                                 const Matrix6d& tangent, const Eigen::Vector3d& N) {

@@ -29,6 +29,13 @@ struct EllipticityResult {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitX();  // the reference N that gave it
 };
 
+// The first elasticity tensor A_iJkL = dP_iJ/dF_kL = δ_ik S_JL + F_iI F_kK C_IJKL as a 9 x 9 matrix
+// over the pairs (i, J) and (k, L), row 3 i + J, column 3 k + L, so that Q(N)_ik = A_(iJ)(kL) N_J
+// N_L: built once per point, it makes a wave normal cost 81 products.
+using Matrix9d = Eigen::Matrix<double, 9, 9>;
+Matrix9d first_elasticity(const Eigen::Matrix3d& F, const Eigen::Matrix3d& S,
+                          const Matrix6d& tangent);
+
 // Q(N) of the formula above; tangent in the Voigt convention of material_law.hpp.
 Eigen::Matrix3d acoustic_tensor(const Eigen::Matrix3d& F, const Eigen::Matrix3d& S,
                                 const Matrix6d& tangent, const Eigen::Vector3d& N);
