@@ -147,6 +147,9 @@ void print_unstable_equilibria(const io::RunSummary& s, std::ostream& out) {
 }
 
 int run(const RunArgs& args) {
+  // First of all, so that a signal during the set-up (a slow start under load) is a request to
+  // stop, not the end of the process without a summary.
+  const StopOnSignal stop_on_signal;
   io::Scene scene;
   try {
     scene = io::load_scene(args.scene);
@@ -180,7 +183,6 @@ int run(const RunArgs& args) {
   };
   std::cout << "isomuscle run: " << args.scene << " -> " << options.out_dir.string() << std::endl;
   io::RunResult result;
-  const StopOnSignal stop_on_signal;
   options.stop_requested = [] { return StopOnSignal::requested(); };
   try {
     result = io::run_scene(scene, options);
