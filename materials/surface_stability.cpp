@@ -18,7 +18,7 @@ namespace {
 using Complex = std::complex<double>;
 using Vector3c = Eigen::Matrix<Complex, 3, 1>;
 
-// The depth mesh: elements graded geometrically from the surface (first element 0.027 / k) to
+// The depth mesh: elements graded geometrically from the surface (first element 0.036 / k) to
 // the clamped bottom at 60 / k, where a surface wave of decay rate 0.3 k, slower than any met in
 // the tests (Biot's neo-Hookean threshold: 0.30), has fallen to e^-18.
 constexpr int kElements = 40;
