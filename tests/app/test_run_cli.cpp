@@ -612,6 +612,12 @@ TEST_F(SlowRunCli, CompressedColumnReportsItsUnstableEquilibria) {
   EXPECT_NE(r.err.find("s: the law is strongly elliptic at all 864 quadrature points"),
             std::string::npos)
       << r.err;
+  // The numbers the README quotes for the column.
+  std::printf(
+      "column: first unstable at t = %g s; mode radius %.3g m, %.3g s; smallest e %.4g mu "
+      "(%.4g mu near the mode), %.3g s\n",
+      first, mode["radius"].get<double>(), mode["seconds"].get<double>(), smallest,
+      near["smallest_over_shear_modulus"].get<double>(), material["seconds"].get<double>());
 }
 
 // The displacement formulation with a nearly incompressible law (lu2010: kappa/mu ~ 1e4) is
