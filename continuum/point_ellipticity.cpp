@@ -10,6 +10,34 @@
 
 namespace isomuscle::continuum {
 
+SteppedResponse stepped_response(const materials::MaterialLaw& law, const Eigen::Matrix3d& F,
+                                 const Eigen::Vector3d& fibre, std::span<const double> history,
+                                 double time, double dt, double pressure) {
+  SteppedResponse out;
+  out.F = F;
+  out.pressure = pressure;
+  out.isochoric = law.has_volumetric_split();
+  if (!(F.determinant() > 0.0))
+    return out;
+  std::vector<double> trial(static_cast<std::size_t>(law.history_size()));
+  materials::PointResult result;
+  result.history = trial;
+  materials::PointInput in;
+  in.F = F;
+  in.fibre = fibre;
+  in.time = time;
+  in.dt = dt;
+  in.history = history;
+  const materials::PointStatus status =
+      out.isochoric ? law.evaluate_isochoric(in, result, true) : law.evaluate(in, result, true);
+  if (status != materials::PointStatus::ok)
+    return out;
+  out.ok = true;
+  out.S = result.S;
+  out.tangent = result.tangent;
+  return out;
+}
+
 std::vector<PointEllipticity> ellipticity_at_points(const materials::MaterialLaw& law,
                                                     const std::vector<Eigen::Matrix3d>& F,
                                                     const std::vector<Eigen::Vector3d>& fibres,
@@ -26,32 +54,17 @@ std::vector<PointEllipticity> ellipticity_at_points(const materials::MaterialLaw
   if (normals < 8)
     throw std::invalid_argument("ellipticity_at_points: normals must be at least 8");
   std::vector<PointEllipticity> out(points);
-  const bool split = law.has_volumetric_split();
   const long count = static_cast<long>(points);
-#pragma omp parallel num_threads(solver::resolve_thread_count(threads))
-  {
-    std::vector<double> trial(hs);
-    materials::PointResult result;
-    result.history = trial;
-#pragma omp for schedule(dynamic, 64)
-    for (long i = 0; i < count; ++i) {
-      const std::size_t p = static_cast<std::size_t>(i);
-      if (!(F[p].determinant() > 0.0))
-        continue;
-      materials::PointInput in;
-      in.F = F[p];
-      in.fibre = fibres[p];
-      in.time = time;
-      in.dt = dt;
-      in.history = std::span<const double>(history.data() + p * hs, hs);
-      const materials::PointStatus status =
-          split ? law.evaluate_isochoric(in, result, true) : law.evaluate(in, result, true);
-      if (status != materials::PointStatus::ok)
-        continue;
-      const materials::EllipticityResult e =
-          materials::refined_isochoric_ellipticity(in.F, result.S, result.tangent, normals);
-      out[p] = PointEllipticity{e.smallest, e.normal};
-    }
+#pragma omp parallel for num_threads(solver::resolve_thread_count(threads)) schedule(dynamic, 64)
+  for (long i = 0; i < count; ++i) {
+    const std::size_t p = static_cast<std::size_t>(i);
+    const SteppedResponse r = stepped_response(
+        law, F[p], fibres[p], std::span<const double>(history.data() + p * hs, hs), time, dt, 0.0);
+    if (!r.ok)
+      continue;
+    const materials::EllipticityResult e =
+        materials::refined_isochoric_ellipticity(r.F, r.S, r.tangent, normals);
+    out[p] = PointEllipticity{e.smallest, e.normal};
   }
   return out;
 }

@@ -14,11 +14,31 @@
 // response, tested on isochoric waves too: a necessary condition then (e <= 0 still means loss).
 #include <Eigen/Core>
 #include <limits>
+#include <span>
 #include <vector>
 
 #include "materials/material_law.hpp"
 
 namespace isomuscle::continuum {
+
+// The law's response at one point as the step that reached a committed state evaluated it (above):
+// F, the isochoric S and tangent for laws with a volumetric split (else the full ones), and the
+// mixed pressure p~ of the point (0 in the displacement formulation). ok is false where the law
+// could not be evaluated.
+struct SteppedResponse {
+  bool ok = false;
+  bool isochoric = false;  // S and tangent are the isochoric part
+  Eigen::Matrix3d F = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();  // Pa
+  materials::Matrix6d tangent = materials::Matrix6d::Zero();
+  double pressure = 0.0;  // p~, Pa
+};
+
+// The response at F, fibre and pre-step history (history_size() values), at the step's time and
+// dt; pressure is the point's p~, carried into the result.
+SteppedResponse stepped_response(const materials::MaterialLaw& law, const Eigen::Matrix3d& F,
+                                 const Eigen::Vector3d& fibre, std::span<const double> history,
+                                 double time, double dt, double pressure);
 
 struct PointEllipticity {
   // e (Pa): the smallest isochoric wave stiffness; NaN where the law could not be evaluated

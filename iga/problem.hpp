@@ -166,6 +166,10 @@ class Problem : public solver::NonlinearProblem {
   // Strong ellipticity of the law at every quadrature point of the committed state, evaluated as
   // the step that reached it evaluated the law (continuum/point_ellipticity.hpp); element-major.
   std::vector<continuum::PointEllipticity> committed_ellipticity(int normals = 96) const;
+  // The law's response at quadrature point q of element e of the committed state, evaluated as for
+  // committed_ellipticity, with the point's p~ (continuum::stepped_response). Throws like
+  // state_at_point.
+  continuum::SteppedResponse committed_response(int e, int q) const;
 
  private:
   // use_base: mixed formulation, update p~, J~ from the current base (when there is one) instead

@@ -49,6 +49,16 @@ std::vector<continuum::PointEllipticity> Problem::committed_ellipticity(int norm
                                           normals, options_.threads);
 }
 
+continuum::SteppedResponse Problem::committed_response(int e, int q) const {
+  const PointState st = state_at_point(e, q);
+  const std::size_t i =
+      static_cast<std::size_t>(e) * space_.points_per_element() + static_cast<std::size_t>(q);
+  const std::size_t hs = static_cast<std::size_t>(history_size_);
+  return continuum::stepped_response(law_, st.field.F, fibres_[i],
+                                     std::span<const double>(history_previous_.data() + i * hs, hs),
+                                     committed_time_, committed_dt_, st.p_bar);
+}
+
 Eigen::VectorXd Problem::lumped_volumes() const {
   Eigen::VectorXd volumes = Eigen::VectorXd::Zero(dofs_.num_nodes());
   for (int e = 0; e < space_.num_elements(); ++e) {

@@ -6,6 +6,7 @@
 #include "io/iga_run_fields.hpp"
 #include "io/iga_run_probes.hpp"
 #include "io/iga_run_setup.hpp"
+#include "io/iga_surface_point.hpp"
 #include "io/solution_file.hpp"
 
 namespace isomuscle::io {
@@ -110,6 +111,10 @@ class IgaRunModel final : public RunModel {
   }
   MaterialEllipticityScan committed_ellipticity(int normals) const override {
     return committed_ellipticity_of(*model_.problem, normals);
+  }
+  std::optional<SurfacePointAt> committed_surface_point(
+      const Eigen::Vector3d& near) const override {
+    return surface_point_at(*model_.problem, locate_surface_point(*model_.problem, near));
   }
   FreeDofLayout free_dof_layout() const override {
     const iga::DofMap& dofs = *model_.dofs;

@@ -10,7 +10,9 @@
 #include "geometry/point_inversion.hpp"
 #include "iga/pressure_space.hpp"
 #include "iga/quadrature_point_interpolation.hpp"
+#include "io/iga_surface_point.hpp"
 #include "io/setting_check.hpp"
+#include "io/surface_stability_check.hpp"
 
 namespace isomuscle::io {
 
@@ -75,6 +77,15 @@ IgaProbes::IgaProbes(const std::vector<ProbeSettings>& probes, const IgaModel& m
     p.component = component_index(s.component);
     p.first_column = columns_.size();
     const std::string what = "[[probe]] '" + s.name + "'";
+    if (s.kind == ProbeKind::surface_stability) {
+      // Any point near the surface will do (a control point of a mode may lie outside).
+      const Eigen::Vector3d X =
+          s.xi ? space.volume().evaluate(model.frame.solid_xi(*s.xi)) : *s.point;
+      points_.emplace_back(s.name, X);
+      p.surface = checked_probe_location(locate_surface_point(problem, X), law, what);
+      notes_.push_back(describe_probe_location(what, p.surface,
+                                               space.position(p.surface.element, p.surface.point)));
+    }
     if (s.kind == ProbeKind::point_displacement || s.kind == ProbeKind::stress_parts) {
       if (s.xi) {
         for (int d = 0; d < 3; ++d) {
@@ -113,6 +124,7 @@ IgaProbes::IgaProbes(const std::vector<ProbeSettings>& probes, const IgaModel& m
     switch (s.kind) {
       case ProbeKind::point_displacement:
       case ProbeKind::volume:
+      case ProbeKind::surface_stability:
         columns_.push_back(s.name);
         break;
       case ProbeKind::face_reaction:
@@ -216,6 +228,9 @@ void IgaProbes::values(const iga::Problem& problem, std::vector<double>& out) co
         break;
       case ProbeKind::stress_parts:
         stress_column_values(problem, p, out, p.first_column);
+        break;
+      case ProbeKind::surface_stability:
+        out[p.first_column] = surface_stability_value(surface_point_at(problem, p.surface));
         break;
     }
   }

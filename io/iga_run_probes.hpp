@@ -14,6 +14,10 @@
 //                                           deformed fibre a = F N / |F N| (thesis 5.30, 5.41) of
 //                                           each part of the law (thesis 3.44: see, pe, matrix,
 //                                           vol for the Hill laws), Pa, and <name>.total
+//   surface_stability   <name>              rho c^2 of the slowest surface wave of the free
+//                                           surface nearest the point as a deformed half-space,
+//                                           Pa (io/surface_stability_check.hpp; <= 0: Biot's
+//                                           surface instability; NaN where the law fails)
 //
 // Points are given physically (point inversion, geometry/point_inversion.hpp) or parametrically
 // (xi in [0, 1]^3, scene naming: iga_run_setup.hpp). Stress parts are the law's converged parts at
@@ -29,6 +33,7 @@
 
 #include "iga/problem.hpp"
 #include "io/iga_run_setup.hpp"
+#include "io/run_model.hpp"
 #include "io/scene.hpp"
 
 namespace isomuscle::io {
@@ -63,6 +68,7 @@ class IgaProbes {
     int point = -1;  // >= 0: evaluate at this quadrature point of element (axis fallback)
     std::vector<int> nodes;
     std::vector<double> weights;  // stress point: interpolation weights of the element's points
+    SurfaceLocation surface;      // surface_stability
     std::size_t first_column = 0;
   };
 

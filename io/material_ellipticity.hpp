@@ -10,7 +10,8 @@
 //   its geometry sets, and refinement converges it. A wrinkle of a compressed free surface (Biot's
 //   surface instability, where the boundary's complementing condition fails, not ellipticity)
 //   has none in a continuum without a length scale: it takes the shortest wavelength the mesh
-//   resolves, so its onset moves with the mesh (the DAO, validation/suite/README.md).
+//   resolves, so its onset moves with the mesh. Whether the surface has reached that is checked
+//   separately (surface_stability_check.hpp).
 // e is measured by the law's initial shear modulus mu.
 #include <string>
 

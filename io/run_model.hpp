@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "continuum/point_ellipticity.hpp"
 #include "io/run_summary.hpp"
 #include "solver/nonlinear_problem.hpp"
 
@@ -81,6 +82,49 @@ MaterialEllipticityScan committed_ellipticity_of(const Problem& problem, int nor
   return scan;
 }
 
+// A place on a traction-free part of the boundary (not a closed seam, the collapsed axis of a
+// shrink solid or a face with prescribed displacements): a boundary point, its outward unit normal
+// in the reference configuration, and the quadrature point below it (element, local point) where
+// the state is taken.
+struct SurfaceLocation {
+  int element = -1, point = -1;
+  Eigen::Vector3d surface_position = Eigen::Vector3d::Zero();  // m
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+};
+
+// The committed state at a SurfaceLocation: the law's response at its quadrature point as the
+// step evaluated it (continuum::SteppedResponse), the local state whose free surface
+// surface_stability_check.hpp tests as a deformed half-space.
+struct SurfacePointAt {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();          // quadrature point, reference, m
+  Eigen::Vector3d surface_position = Eigen::Vector3d::Zero();  // boundary point, reference, m
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // outward unit normal there, reference
+  continuum::SteppedResponse response;
+  double shear_modulus = 0.0;  // mu of the law, Pa
+};
+
+// The committed state of a discretisation's problem (iga::Problem, tet::TetProblem:
+// committed_response(e, q), space().position(e, q), law()) at a location.
+template <class Problem>
+SurfacePointAt surface_point_at(const Problem& problem, const SurfaceLocation& where) {
+  SurfacePointAt out;
+  out.position = problem.space().position(where.element, where.point);
+  out.surface_position = where.surface_position;
+  out.normal = where.normal;
+  out.response = problem.committed_response(where.element, where.point);
+  out.shear_modulus = problem.law().shear_modulus();
+  return out;
+}
+
+// The same where a location was found (nullopt passed on).
+template <class Problem>
+std::optional<SurfacePointAt> surface_point_at(const Problem& problem,
+                                               const std::optional<SurfaceLocation>& where) {
+  if (!where)
+    return std::nullopt;
+  return surface_point_at(problem, *where);
+}
+
 class RunModel {
  public:
   virtual ~RunModel() = default;
@@ -127,6 +171,10 @@ class RunModel {
   // The law's strong ellipticity at every quadrature point of the committed state (normals: the
   // coarse set of the search; computed when called).
   virtual MaterialEllipticityScan committed_ellipticity(int normals) const = 0;
+  // The surface point of the committed state nearest `near` (reference, m); nullopt when the body
+  // has no traction-free boundary.
+  virtual std::optional<SurfacePointAt> committed_surface_point(
+      const Eigen::Vector3d& near) const = 0;
 };
 
 }  // namespace isomuscle::io

@@ -121,7 +121,8 @@ const char* to_string(IndefiniteTangent k) {
 }
 
 const char* to_string(ProbeKind k) {
-  static const char* names[] = {"point_displacement", "face_reaction", "volume", "stress_parts"};
+  static const char* names[] = {"point_displacement", "face_reaction", "volume", "stress_parts",
+                                "surface_stability"};
   return names[static_cast<int>(k)];
 }
 
@@ -428,7 +429,8 @@ void ProbeSettings::validate() const {
     throw InvalidSetting("name", "must be letters, digits, '_', '.' or '-' (got \"" + name +
                                      "\"); it becomes a CSV column");
   }
-  const bool at_point = kind == ProbeKind::point_displacement || kind == ProbeKind::stress_parts;
+  const bool at_point = kind == ProbeKind::point_displacement || kind == ProbeKind::stress_parts ||
+                        kind == ProbeKind::surface_stability;
   if (at_point && point.has_value() == xi.has_value()) {
     throw InvalidSetting("point", std::string("or 'xi' (one of them) is needed by kind = \"") +
                                       to_string(kind) + "\"");

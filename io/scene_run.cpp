@@ -14,6 +14,7 @@
 #include "io/iga_run_model.hpp"
 #include "io/material_ellipticity.hpp"
 #include "io/run_model.hpp"
+#include "io/surface_stability_check.hpp"
 #include "io/tet_run_model.hpp"
 #include "io/unstable_mode.hpp"
 #include "isomuscle/version.hpp"
@@ -325,6 +326,10 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   // Whether the law itself lost stability there (material_ellipticity.hpp), or why not known.
   std::optional<MaterialEllipticity> material_ellipticity;
   std::string material_ellipticity_failure;
+  // Whether the free surface nearest the mode's peak wrinkles as a deformed half-space
+  // (surface_stability_check.hpp), or why not known.
+  std::optional<SurfaceStabilityCheck> surface_stability;
+  std::string surface_stability_failure;
   std::vector<double> probe_row;
   std::optional<std::vector<double>> last_probes;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
@@ -360,6 +365,19 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         material_ellipticity = m;
       } catch (const std::exception& e) {
         material_ellipticity_failure = e.what();
+      }
+    };
+    const auto assess_surface = [&]() {
+      try {
+        if (!unstable_mode || !unstable_mode->ok)
+          throw std::runtime_error("no mode to place it");
+        const std::optional<SurfacePointAt> point =
+            model->committed_surface_point(unstable_mode->peak_position);
+        if (!point)
+          throw std::runtime_error("the body has no traction-free boundary");
+        surface_stability = assess_surface_stability(*point);
+      } catch (const std::exception& e) {
+        surface_stability_failure = e.what();
       }
     };
     SteppedProblem stepped_problem(
@@ -420,6 +438,11 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
               (material_ellipticity ? describe(*material_ellipticity)
                                     : "the material's ellipticity could not be assessed: " +
                                           material_ellipticity_failure));
+          assess_surface();
+          log("note: t = " + format_run_time(r.time) + " s: " +
+              (surface_stability ? describe(*surface_stability)
+                                 : "the free surface's stability could not be assessed: " +
+                                       surface_stability_failure));
         }
       }
       write_newton_rows(r.step, r.time, r.dt, n, true);
@@ -543,6 +566,26 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   } else if (first_unstable) {
     s.extra["stability"]["material_ellipticity"] =
         Json{{"time", optional_time(first_unstable)}, {"reason", material_ellipticity_failure}};
+  }
+  if (surface_stability) {
+    const SurfaceStabilityCheck& c = *surface_stability;
+    const auto xyz = [](const Eigen::Vector3d& v) { return Json{v.x(), v.y(), v.z()}; };
+    s.extra["stability"]["surface_stability"] =
+        Json{{"time", optional_time(first_unstable)},
+             {"position", xyz(c.point.surface_position)},
+             {"reference_normal", xyz(c.point.normal)},
+             {"normal", xyz(c.current_normal)},
+             {"quadrature_point", xyz(c.point.position)},
+             {"smallest", c.smallest},
+             {"smallest_over_shear_modulus", c.smallest / c.point.shear_modulus},
+             {"direction", xyz(c.direction)},
+             {"free_surface_pressure", c.free_surface_pressure},
+             {"element_pressure", c.point.response.pressure},
+             {"shear_traction", c.shear_traction},
+             {"seconds", c.seconds}};
+  } else if (first_unstable) {
+    s.extra["stability"]["surface_stability"] =
+        Json{{"time", optional_time(first_unstable)}, {"reason", surface_stability_failure}};
   }
   if (unstable_steps > 0) {
     s.extra["notes"].push_back(

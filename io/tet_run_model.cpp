@@ -6,6 +6,7 @@
 #include "io/tet_run_fields.hpp"
 #include "io/tet_run_probes.hpp"
 #include "io/tet_run_setup.hpp"
+#include "io/tet_surface_point.hpp"
 #include "tet/tet_mesh.hpp"
 
 namespace isomuscle::io {
@@ -21,6 +22,9 @@ class TetRunModel final : public RunModel {
       fields_ = std::make_unique<TetFieldOutput>(out_dir / "fields.xdmf", scene.output.fields);
     solution_ = std::make_unique<SolutionWriter>(out_dir / "solution.h5", model_.solid.volume,
                                                  *model_.mesh);
+    notes_ = model_.notes;
+    for (const auto& note : probes_->notes())
+      notes_.push_back(note);
   }
 
   solver::NonlinearProblem& problem() override { return *model_.problem; }
@@ -51,7 +55,7 @@ class TetRunModel final : public RunModel {
            " unknowns, " + tet::to_string(model_.problem->formulation()) + " formulation, law " +
            model_.law->name();
   }
-  const std::vector<std::string>& notes() const override { return model_.notes; }
+  const std::vector<std::string>& notes() const override { return notes_; }
   const std::string& failure_hint() const override { return model_.failure_hint; }
 
   const std::vector<std::string>& probe_columns() const override { return probes_->columns(); }
@@ -85,6 +89,10 @@ class TetRunModel final : public RunModel {
   MaterialEllipticityScan committed_ellipticity(int normals) const override {
     return committed_ellipticity_of(*model_.problem, normals);
   }
+  std::optional<SurfacePointAt> committed_surface_point(
+      const Eigen::Vector3d& near) const override {
+    return surface_point_at(*model_.problem, locate_surface_point(*model_.problem, near));
+  }
   FreeDofLayout free_dof_layout() const override {
     const tet::TetProblem& problem = *model_.problem;
     FreeDofLayout layout;
@@ -115,6 +123,7 @@ class TetRunModel final : public RunModel {
 
  private:
   TetModel model_;
+  std::vector<std::string> notes_;  // the model's and the probes'
   std::unique_ptr<TetProbes> probes_;
   std::unique_ptr<TetFieldOutput> fields_;
   std::unique_ptr<SolutionWriter> solution_;

@@ -5,6 +5,8 @@
 #include <stdexcept>
 
 #include "io/setting_check.hpp"
+#include "io/surface_stability_check.hpp"
+#include "io/tet_surface_point.hpp"
 
 namespace isomuscle::io {
 
@@ -37,6 +39,14 @@ TetProbes::TetProbes(const std::vector<ProbeSettings>& probes, const TetModel& m
     p.component = component_index(s.component);
     p.first_column = columns_.size();
     const std::string what = "[[probe]] '" + s.name + "'";
+    if (s.kind == ProbeKind::surface_stability) {
+      const Eigen::Vector3d X =
+          s.xi ? model.solid.volume.evaluate(model.solid.frame.solid_xi(*s.xi)) : *s.point;
+      points_.emplace_back(s.name, X);
+      p.surface = checked_probe_location(locate_surface_point(*model.problem, X), law, what);
+      notes_.push_back(describe_probe_location(what, p.surface,
+                                               space.position(p.surface.element, p.surface.point)));
+    }
     if (s.kind == ProbeKind::point_displacement || s.kind == ProbeKind::stress_parts) {
       Eigen::Vector3d X;
       Eigen::Vector3d xi;
@@ -81,6 +91,7 @@ TetProbes::TetProbes(const std::vector<ProbeSettings>& probes, const TetModel& m
     switch (s.kind) {
       case ProbeKind::point_displacement:
       case ProbeKind::volume:
+      case ProbeKind::surface_stability:
         columns_.push_back(s.name);
         break;
       case ProbeKind::face_reaction:
@@ -124,6 +135,9 @@ void TetProbes::values(const tet::TetProblem& problem, std::vector<double>& out)
         break;
       case ProbeKind::volume:
         out[at] = problem.current_volume(u);
+        break;
+      case ProbeKind::surface_stability:
+        out[at] = surface_stability_value(surface_point_at(problem, p.surface));
         break;
       case ProbeKind::stress_parts: {
         // The converged state at the quadrature point; its parts from the committed (converged)

@@ -10,6 +10,9 @@
 //   volume              int J dV, m^3
 //   stress_parts        a . sigma_part . a at the quadrature point nearest to the point (the
 //                       law's parts, thesis 3.44; "vol" is p~ I for the mixed formulation), Pa
+//   surface_stability   rho c^2 of the slowest surface wave of the free surface nearest the point
+//                       as a deformed half-space (the nearest free boundary triangle,
+//                       tet_surface_point.hpp), Pa
 //
 // Points are given physically or parametrically (xi, scene naming: X = H(xi) of the solid).
 #include <Eigen/Core>
@@ -17,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "io/run_model.hpp"
 #include "io/scene.hpp"
 #include "io/tet_run_setup.hpp"
 #include "tet/tet_locator.hpp"
@@ -31,6 +35,8 @@ class TetProbes {
 
   const std::vector<std::string>& columns() const { return columns_; }
   const std::vector<std::pair<std::string, Eigen::Vector3d>>& points() const { return points_; }
+  // Where surface_stability probes were placed, for the log.
+  const std::vector<std::string>& notes() const { return notes_; }
 
   // The internal force of the converged state (reactions), before it is committed.
   void before_commit(tet::TetProblem& problem, const Eigen::VectorXd& u);
@@ -44,12 +50,14 @@ class TetProbes {
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
     tet::TetLocation location;
     int element = -1, point = -1;  // stress_parts: nearest quadrature point
+    SurfaceLocation surface;       // surface_stability
     std::vector<int> nodes;
     std::size_t first_column = 0;
   };
 
   std::unique_ptr<tet::TetLocator> locator_;
   std::vector<Probe> probes_;
+  std::vector<std::string> notes_;
   std::vector<std::string> columns_;
   std::vector<std::string> part_names_;
   bool replace_volumetric_ = false;

@@ -424,6 +424,16 @@ std::vector<continuum::PointEllipticity> TetProblem::committed_ellipticity(int n
                                           normals, options_.threads);
 }
 
+continuum::SteppedResponse TetProblem::committed_response(int e, int q) const {
+  const TetPointState st = state_at_point(e, q);
+  const std::size_t i =
+      static_cast<std::size_t>(e) * space_.points_per_element() + static_cast<std::size_t>(q);
+  const std::size_t hs = static_cast<std::size_t>(history_size_);
+  return continuum::stepped_response(law_, st.F, fibres_[i],
+                                     std::span<const double>(history_previous_.data() + i * hs, hs),
+                                     committed_time_, committed_dt_, st.p_bar);
+}
+
 Eigen::VectorXd TetProblem::lumped_volumes() const {
   const TetMesh& mesh = space_.mesh();
   const int nen = space_.nodes_per_element();

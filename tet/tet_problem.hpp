@@ -134,6 +134,10 @@ class TetProblem : public solver::NonlinearProblem {
   // Strong ellipticity of the law at every quadrature point of the committed state, evaluated as
   // the step that reached it evaluated the law (continuum/point_ellipticity.hpp); element-major.
   std::vector<continuum::PointEllipticity> committed_ellipticity(int normals = 96) const;
+  // The law's response at quadrature point q of element e of the committed state, evaluated as for
+  // committed_ellipticity, with the point's p~ (continuum::stepped_response). Throws like
+  // state_at_point.
+  continuum::SteppedResponse committed_response(int e, int q) const;
   const Eigen::VectorXd& external_force() const { return f_ext_; }
   // Internal force at ALL DOFs (3 per node, N) for free values u: an assembly pass without
   // tangent. The trial history is scratch; the committed state does not change.

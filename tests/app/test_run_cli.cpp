@@ -612,12 +612,59 @@ TEST_F(SlowRunCli, CompressedColumnReportsItsUnstableEquilibria) {
   EXPECT_NE(r.err.find("s: the law is strongly elliptic at all 864 quadrature points"),
             std::string::npos)
       << r.err;
+  // The free surface nearest the mode's peak: the lateral surface (not a clamped end), compressed
+  // along the axis but far from Biot's threshold, so the check says the local state does not
+  // wrinkle by itself: Euler buckling needs the column's length. Compression along the surface
+  // slows its slowest wave below the Rayleigh wave at rest, 0.91262 mu.
+  const nlohmann::json& surface = stability["surface_stability"];
+  ASSERT_TRUE(surface.is_object()) << stability.dump(2);
+  EXPECT_DOUBLE_EQ(surface["time"].get<double>(), first);
+  const double surface_z = surface["position"][2].get<double>();
+  EXPECT_GT(surface_z, 0.002);
+  EXPECT_LT(surface_z, 0.048);  // reference positions: the ends are at z = 0 and 0.05 m
+  const double s_surface = surface["smallest_over_shear_modulus"].get<double>();
+  EXPECT_GT(s_surface, 0.1);
+  EXPECT_LT(s_surface, 0.91262);
+  EXPECT_NE(r.err.find("is stable as a deformed half-space"), std::string::npos) << r.err;
   // The numbers the README quotes for the column.
   std::printf(
       "column: first unstable at t = %g s; mode radius %.3g m, %.3g s; smallest e %.4g mu "
-      "(%.4g mu near the mode), %.3g s\n",
+      "(%.4g mu near the mode), %.3g s; surface at z = %.3g m: rho c^2 = %.3g mu, %.3g s\n",
       first, mode["radius"].get<double>(), mode["seconds"].get<double>(), smallest,
-      near["smallest_over_shear_modulus"].get<double>(), material["seconds"].get<double>());
+      near["smallest_over_shear_modulus"].get<double>(), material["seconds"].get<double>(),
+      surface_z, s_surface, surface["seconds"].get<double>());
+}
+
+// The surface_stability probe on the barrel clamped at both ends and shortened by 3 mm per step:
+// the lateral surface at mid-length, compressed along the axis, slows its slowest surface wave
+// from the Rayleigh wave of the solid at rest (0.91262 mu) step by step, while staying far from
+// Biot's threshold (0). The log says where the probe was placed; its point lies outside the
+// barrel, which the probe allows (it looks for the nearest free surface).
+TEST_F(SlowRunCli, SurfaceStabilityProbeFallsAsTheBarrelIsShortened) {
+  const fs::path scene = write(
+      "surface_probe.toml",
+      barrel_scene("[material]\nmodel = \"neo_hookean\"\n[material.parameters]\nK = 2.0e6\n",
+                   "[[boundary]]\nface = \"v1\"\ntype = \"displacement\"\n"
+                   "velocity = [0.0, 0.0, -0.03]\n",
+                   "end = 0.3\ndt = 0.1\nadaptive = false\n") +
+          "[[probe]]\nname = \"side\"\nkind = \"surface_stability\"\npoint = [0.02, 0.0, 0.025]\n");
+  const fs::path out = dir_ / "surface_probe";
+  const CliResult r = run("run " + scene.string() + " --out " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("[[probe]] 'side': the free surface nearest it is at (0.008"),
+            std::string::npos)
+      << r.err;
+  const Table probes = read_csv(out / "probes.csv");
+  ASSERT_EQ(probes.rows.size(), 3u);
+  const double mu = 2.0 * 420.0;  // 2 C10, the default
+  double previous = 0.91262 * mu;
+  for (const auto& row : probes.rows) {
+    const double s = row[probes.column("side")];
+    std::printf("t = %g s: rho c^2 = %.4f mu\n", row[probes.column("time")], s / mu);
+    EXPECT_LT(s, previous);
+    EXPECT_GT(s, 0.3 * mu);
+    previous = s;
+  }
 }
 
 // The displacement formulation with a nearly incompressible law (lu2010: kappa/mu ~ 1e4) is

@@ -358,6 +358,13 @@ def main():
                 unstable += " (%.3g mu near the mode)" % material["near_mode"]["smallest_over_shear_modulus"]
         elif material:
             unstable += "; ellipticity not assessed: " + material.get("reason", "")
+        surface = st.get("surface_stability")  # runs before 2026-12-06 (fourth session) have none
+        if surface and "smallest" in surface:
+            unstable += "; free surface at the mode %s as a half-space (rho c^2 %.3g mu)" % (
+                "stable" if surface["smallest"] > 0 else "WRINKLES",
+                surface["smallest_over_shear_modulus"])
+        elif surface:
+            unstable += "; surface not assessed: " + surface.get("reason", "")
         work.append("| %s | %d | %d | %d | %d | %d (%.0f s) | %d (%.0e, %.0f s) | %s | %.0f s |" % (
             m, s["steps"], s["newton_iterations"], len(s["step_cuts"]), ls.get("cholesky_failures", 0),
             ls.get("lu_fallbacks", 0), ls.get("lu_seconds", 0.0),

@@ -368,8 +368,9 @@ def main():
 
 def stability_text(summary):
     """Whether the run's equilibria stayed stable (summary.json's stability): "stable", or when
-    the first unstable one was reached and whether the law stayed strongly elliptic there (a
-    structural instability, buckling or wrinkling) or not (a material one)."""
+    the first unstable one was reached, whether the law stayed strongly elliptic there (a
+    structural instability, buckling or wrinkling) or not (a material one), and whether the free
+    surface nearest the mode wrinkles as a deformed half-space (Biot) or not."""
     st = summary.get("stability")
     if not st:
         return "-"
@@ -379,6 +380,10 @@ def stability_text(summary):
     material = st.get("material_ellipticity", {})
     if "strongly_elliptic" in material:
         text += " (structural)" if material["strongly_elliptic"] else " (material: law not elliptic)"
+    surface = st.get("surface_stability", {})
+    if "smallest" in surface:
+        text += (" (free surface stable as a half-space)" if surface["smallest"] > 0 else
+                 " (free surface past Biot's threshold)")
     return text
 
 
