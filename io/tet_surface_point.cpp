@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <limits>
-#include <map>
+#include <span>
 
 namespace isomuscle::io {
 
@@ -18,16 +18,17 @@ std::optional<SurfaceLocation> locate_surface_point(const tet::TetProblem& probl
     }
     return false;
   };
+  const auto X = [&](int node) { return mesh.nodes[static_cast<std::size_t>(node)]; };
+  const auto centroid_of = [&](std::span<const int> face) {
+    return Eigen::Vector3d((X(face[0]) + X(face[1]) + X(face[2])) / 3.0);
+  };
   int best_face = -1;
   double best_distance = std::numeric_limits<double>::infinity();
   for (int f = 0; f < mesh.num_boundary_faces(); ++f) {
     const auto face = mesh.face(f);
     if (std::all_of(face.begin(), face.end(), prescribed))
       continue;
-    const Eigen::Vector3d centroid = (mesh.nodes[static_cast<std::size_t>(face[0])] +
-                                      mesh.nodes[static_cast<std::size_t>(face[1])] +
-                                      mesh.nodes[static_cast<std::size_t>(face[2])]) /
-                                     3.0;
+    const Eigen::Vector3d centroid = centroid_of(face);
     if (const double distance = (centroid - near).norm(); distance < best_distance) {
       best_distance = distance;
       best_face = f;
@@ -50,8 +51,7 @@ std::optional<SurfaceLocation> locate_surface_point(const tet::TetProblem& probl
     }
     if (shared != 3)
       continue;
-    const auto X = [&](int node) { return mesh.nodes[static_cast<std::size_t>(node)]; };
-    const Eigen::Vector3d centroid = (X(face[0]) + X(face[1]) + X(face[2])) / 3.0;
+    const Eigen::Vector3d centroid = centroid_of(face);
     Eigen::Vector3d normal = (X(face[1]) - X(face[0])).cross(X(face[2]) - X(face[0])).normalized();
     if (normal.dot(centroid - X(fourth)) < 0.0)
       normal = -normal;

@@ -1,5 +1,6 @@
 #pragma once
-// Helpers shared by the io tests: fresh scratch folders and line numbers of snippets in texts.
+// Helpers shared by the io tests: fresh scratch folders, line numbers of snippets in texts and
+// the clamped barrel scene.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -42,6 +43,18 @@ inline std::string read_text(const std::filesystem::path& path) {
 inline void write_text(const std::filesystem::path& path, std::string_view text) {
   std::ofstream out(path, std::ios::binary);
   out << text;
+}
+
+// The scene of the barrel (examples/geometry/barrel.igs, 5 cm along z) clamped at its v0 end,
+// passive neo-Hookean, one 0.1 s step, on discretisation "iga" or "tet" (3 mm tetrahedra).
+inline std::string clamped_barrel_scene(const std::string& discretisation) {
+  return "discretisation = \"" + discretisation + "\"\n[geometry]\niges = \"" +
+         std::string(ISOMUSCLE_SOURCE_DIR) +
+         "/examples/geometry/barrel.igs\"\ncentreline = \"v\"\n[geometry.refine]\n"
+         "degree_elevation = [0, 0, 1]\nknot_insertion = [1, 1, 0]\n" +
+         (discretisation == "tet" ? "[tetrahedra]\nelement_size = 0.003\n" : "") +
+         "[material]\nmodel = \"neo_hookean\"\n[[boundary]]\nface = \"v0\"\ntype = \"fixed\"\n"
+         "[time]\nend = 0.1\ndt = 0.1\n";
 }
 
 }  // namespace isomuscle::io::testing_util

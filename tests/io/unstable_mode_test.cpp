@@ -32,14 +32,7 @@ TEST_P(UnstableModeOfModel, LayoutAndLowestModesAtTheReferenceState) {
   const std::string discretisation = GetParam();
   const bool tet = discretisation == "tet";
   const std::filesystem::path dir = testing_util::fresh_directory(discretisation);
-  const std::string text =
-      "discretisation = \"" + discretisation + "\"\n[geometry]\niges = \"" +
-      std::string(ISOMUSCLE_SOURCE_DIR) +
-      "/examples/geometry/barrel.igs\"\ncentreline = \"v\"\n[geometry.refine]\n"
-      "degree_elevation = [0, 0, 1]\nknot_insertion = [1, 1, 0]\n" +
-      (tet ? "[tetrahedra]\nelement_size = 0.003\n" : "") +
-      "[material]\nmodel = \"neo_hookean\"\n[[boundary]]\nface = \"v0\"\ntype = \"fixed\"\n"
-      "[time]\nend = 0.1\ndt = 0.1\n";
+  const std::string text = testing_util::clamped_barrel_scene(discretisation);
   const Scene scene = parse_scene(text, dir / "scene.toml");
   const std::unique_ptr<RunModel> model =
       tet ? make_tet_run_model(scene, 1, dir) : make_iga_run_model(scene, 1, dir);
