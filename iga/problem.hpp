@@ -30,6 +30,7 @@
 #include "iga/element_kernels.hpp"
 #include "iga/field_evaluation.hpp"
 #include "iga/loads.hpp"
+#include "iga/periodic_layer_stability.hpp"
 #include "iga/pressure_space.hpp"
 #include "iga/space.hpp"
 #include "materials/material_law.hpp"
@@ -170,6 +171,11 @@ class Problem : public solver::NonlinearProblem {
   // committed_ellipticity, with the point's p~ (continuum::stepped_response). Throws like
   // state_at_point.
   continuum::SteppedResponse committed_response(int e, int q) const;
+  // The same point as a homogeneous state of the periodic layer (periodic_layer_stability.hpp):
+  // its F, reference fibre, pre-step history, the step's time and dt. F is scaled by
+  // (J~ / det F)^(1/3), which keeps its isochoric part and gives the layer, whose J~ is det F, the
+  // element's p~ = U'(J~). Throws like state_at_point.
+  LayerState committed_layer_state(int e, int q) const;
 
  private:
   // use_base: mixed formulation, update p~, J~ from the current base (when there is one) instead

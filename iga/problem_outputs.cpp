@@ -59,6 +59,22 @@ continuum::SteppedResponse Problem::committed_response(int e, int q) const {
                                      committed_time_, committed_dt_, st.p_bar);
 }
 
+LayerState Problem::committed_layer_state(int e, int q) const {
+  const PointState st = state_at_point(e, q);
+  const std::size_t i =
+      static_cast<std::size_t>(e) * space_.points_per_element() + static_cast<std::size_t>(q);
+  const std::size_t hs = static_cast<std::size_t>(history_size_);
+  LayerState out;
+  out.law = &law_;
+  out.F = std::cbrt(st.J_bar / st.field.F.determinant()) * st.field.F;
+  out.fibre = fibres_[i];
+  out.history.assign(history_previous_.begin() + static_cast<std::ptrdiff_t>(i * hs),
+                     history_previous_.begin() + static_cast<std::ptrdiff_t>((i + 1) * hs));
+  out.time = committed_time_;
+  out.dt = committed_dt_;
+  return out;
+}
+
 Eigen::VectorXd Problem::lumped_volumes() const {
   Eigen::VectorXd volumes = Eigen::VectorXd::Zero(dofs_.num_nodes());
   for (int e = 0; e < space_.num_elements(); ++e) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "io/iga_run_fields.hpp"
 #include "io/iga_run_probes.hpp"
@@ -115,6 +116,16 @@ class IgaRunModel final : public RunModel {
   std::optional<SurfacePointAt> committed_surface_point(
       const Eigen::Vector3d& near) const override {
     return surface_point_at(*model_.problem, locate_surface_point(*model_.problem, near));
+  }
+  ElementLayerCheck committed_element_layer(const Eigen::Vector3d& near) const override {
+    const std::optional<SurfaceLocation> where = locate_surface_point(*model_.problem, near);
+    if (!where)
+      throw std::runtime_error("the body has no traction-free boundary");
+    try {
+      return assess_element_layer(*model_.problem, *where);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(e.what());
+    }
   }
   FreeDofLayout free_dof_layout() const override {
     const iga::DofMap& dofs = *model_.dofs;

@@ -10,6 +10,7 @@
 #include "geometry/point_inversion.hpp"
 #include "iga/pressure_space.hpp"
 #include "iga/quadrature_point_interpolation.hpp"
+#include "io/element_layer_check.hpp"
 #include "io/iga_surface_point.hpp"
 #include "io/setting_check.hpp"
 #include "io/surface_stability_check.hpp"
@@ -77,7 +78,7 @@ IgaProbes::IgaProbes(const std::vector<ProbeSettings>& probes, const IgaModel& m
     p.component = component_index(s.component);
     p.first_column = columns_.size();
     const std::string what = "[[probe]] '" + s.name + "'";
-    if (s.kind == ProbeKind::surface_stability) {
+    if (s.kind == ProbeKind::surface_stability || s.kind == ProbeKind::element_layer) {
       // Any point near the surface will do (a control point of a mode may lie outside).
       const Eigen::Vector3d X =
           s.xi ? space.volume().evaluate(model.frame.solid_xi(*s.xi)) : *s.point;
@@ -85,6 +86,10 @@ IgaProbes::IgaProbes(const std::vector<ProbeSettings>& probes, const IgaModel& m
       p.surface = checked_probe_location(locate_surface_point(problem, X), law, what);
       notes_.push_back(describe_probe_location(what, p.surface,
                                                space.position(p.surface.element, p.surface.point)));
+      if (s.kind == ProbeKind::element_layer && !mixed)
+        throw std::invalid_argument(what +
+                                    ": kind = \"element_layer\" checks the mixed element; this run "
+                                    "uses the displacement formulation ([solver] formulation)");
     }
     if (s.kind == ProbeKind::point_displacement || s.kind == ProbeKind::stress_parts) {
       if (s.xi) {
@@ -125,6 +130,7 @@ IgaProbes::IgaProbes(const std::vector<ProbeSettings>& probes, const IgaModel& m
       case ProbeKind::point_displacement:
       case ProbeKind::volume:
       case ProbeKind::surface_stability:
+      case ProbeKind::element_layer:
         columns_.push_back(s.name);
         break;
       case ProbeKind::face_reaction:
@@ -231,6 +237,9 @@ void IgaProbes::values(const iga::Problem& problem, std::vector<double>& out) co
         break;
       case ProbeKind::surface_stability:
         out[p.first_column] = surface_stability_value(surface_point_at(problem, p.surface));
+        break;
+      case ProbeKind::element_layer:
+        out[p.first_column] = element_layer_value(problem, p.surface);
         break;
     }
   }

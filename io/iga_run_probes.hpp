@@ -18,6 +18,11 @@
 //                                           surface nearest the point as a deformed half-space,
 //                                           Pa (io/surface_stability_check.hpp; <= 0: Biot's
 //                                           surface instability; NaN where the law fails)
+//   element_layer       <name>              the lowest Bloch eigenvalue of the run's element
+//                                           tiled along the free surface nearest the point and
+//                                           deformed to its state, Pa/m^2
+//                                           (io/element_layer_check.hpp; <= 0: the element
+//                                           itself is unstable there; mixed formulation only)
 //
 // Points are given physically (point inversion, geometry/point_inversion.hpp) or parametrically
 // (xi in [0, 1]^3, scene naming: iga_run_setup.hpp). Stress parts are the law's converged parts at
@@ -68,7 +73,7 @@ class IgaProbes {
     int point = -1;  // >= 0: evaluate at this quadrature point of element (axis fallback)
     std::vector<int> nodes;
     std::vector<double> weights;  // stress point: interpolation weights of the element's points
-    SurfaceLocation surface;      // surface_stability
+    SurfaceLocation surface;      // surface_stability, element_layer
     std::size_t first_column = 0;
   };
 

@@ -85,6 +85,7 @@ std::optional<SurfaceLocation> locate_surface_point(const iga::Problem& problem,
     double to_near = std::numeric_limits<double>::infinity();
     double depth = std::numeric_limits<double>::infinity();
     Eigen::Vector3d surface = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::Zero();
+    int direction = -1, end = 0;
   } best;
   for (const iga::Side side : sides) {
     const int d = iga::side_direction(side), end = iga::side_end(side);
@@ -110,13 +111,14 @@ std::optional<SurfaceLocation> locate_surface_point(const iga::Problem& problem,
           continue;  // a collapsed edge of the side: no normal
         if (normal.dot(J.col(d)) * (end == 0 ? -1.0 : 1.0) < 0.0)
           normal = -normal;
-        best = Candidate{e, q, to_near, depth, X, normal.normalized()};
+        best = Candidate{e, q, to_near, depth, X, normal.normalized(), d, end};
       }
     }
   }
   if (best.element < 0)
     return std::nullopt;
-  return SurfaceLocation{best.element, best.point, best.surface, best.normal};
+  return SurfaceLocation{best.element, best.point,     best.surface,
+                         best.normal,  best.direction, best.end};
 }
 
 }  // namespace isomuscle::io

@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "continuum/point_ellipticity.hpp"
+#include "io/element_layer_check.hpp"
 #include "io/run_summary.hpp"
+#include "io/surface_location.hpp"
 #include "solver/nonlinear_problem.hpp"
 
 namespace isomuscle::io {
@@ -81,16 +83,6 @@ MaterialEllipticityScan committed_ellipticity_of(const Problem& problem, int nor
   scan.normals = normals;
   return scan;
 }
-
-// A place on a traction-free part of the boundary (not a closed seam, the collapsed axis of a
-// shrink solid or a face with prescribed displacements): a boundary point, its outward unit normal
-// in the reference configuration, and the quadrature point below it (element, local point) where
-// the state is taken.
-struct SurfaceLocation {
-  int element = -1, point = -1;
-  Eigen::Vector3d surface_position = Eigen::Vector3d::Zero();  // m
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
-};
 
 // The committed state at a SurfaceLocation: the law's response at its quadrature point as the
 // step evaluated it (continuum::SteppedResponse), the local state whose free surface
@@ -175,6 +167,10 @@ class RunModel {
   // has no traction-free boundary.
   virtual std::optional<SurfacePointAt> committed_surface_point(
       const Eigen::Vector3d& near) const = 0;
+  // The run's element tiled along the surface nearest `near` at the committed state
+  // (element_layer_check.hpp). Throws std::runtime_error saying why where there is no such check
+  // (tetrahedra, the displacement formulation, no traction-free boundary).
+  virtual ElementLayerCheck committed_element_layer(const Eigen::Vector3d& near) const = 0;
 };
 
 }  // namespace isomuscle::io

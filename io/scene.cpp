@@ -121,8 +121,8 @@ const char* to_string(IndefiniteTangent k) {
 }
 
 const char* to_string(ProbeKind k) {
-  static const char* names[] = {"point_displacement", "face_reaction", "volume", "stress_parts",
-                                "surface_stability"};
+  static const char* names[] = {"point_displacement", "face_reaction",     "volume",
+                                "stress_parts",       "surface_stability", "element_layer"};
   return names[static_cast<int>(k)];
 }
 
@@ -430,7 +430,7 @@ void ProbeSettings::validate() const {
                                      "\"); it becomes a CSV column");
   }
   const bool at_point = kind == ProbeKind::point_displacement || kind == ProbeKind::stress_parts ||
-                        kind == ProbeKind::surface_stability;
+                        kind == ProbeKind::surface_stability || kind == ProbeKind::element_layer;
   if (at_point && point.has_value() == xi.has_value()) {
     throw InvalidSetting("point", std::string("or 'xi' (one of them) is needed by kind = \"") +
                                       to_string(kind) + "\"");

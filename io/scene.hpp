@@ -230,15 +230,24 @@ struct OutputSettings {
 // [[probe]]: a scalar (or a few scalars) recorded every step into probes.csv. surface_stability:
 // rho c^2 (Pa) of the slowest surface wave of the free surface nearest the point, taken as a
 // deformed half-space (io/surface_stability_check.hpp; <= 0: Biot's surface instability), a few
-// seconds a step.
-enum class ProbeKind { point_displacement, face_reaction, volume, stress_parts, surface_stability };
+// seconds a step. element_layer (NURBS solids, mixed formulation): the lowest Bloch eigenvalue
+// (Pa/m^2) of the run's element tiled along the free surface nearest the point and deformed to
+// its state (io/element_layer_check.hpp; <= 0: the element itself is unstable there).
+enum class ProbeKind {
+  point_displacement,
+  face_reaction,
+  volume,
+  stress_parts,
+  surface_stability,
+  element_layer
+};
 const char* to_string(ProbeKind k);
 
 struct ProbeSettings {
   std::string name;  // column name in probes.csv, [A-Za-z0-9_.-]+
   ProbeKind kind = ProbeKind::volume;
-  std::optional<Eigen::Vector3d> point;  // point_displacement, stress_parts, surface_stability:
-                                         // reference point, m
+  std::optional<Eigen::Vector3d> point;  // point_displacement, stress_parts, surface_stability,
+                                         // element_layer: reference point, m
   std::optional<Eigen::Vector3d> xi;     // ... or parametric point (u, v, w) in [0, 1]^3
   std::optional<FaceSelector> face;      // face_reaction
   std::string component = "magnitude";   // x, y, z or magnitude (point_displacement, reaction);

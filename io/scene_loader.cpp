@@ -349,19 +349,21 @@ OutputSettings read_output(std::optional<SceneTable> t, const TimeSettings& time
 ProbeSettings read_probe(SceneTable t) {
   ProbeSettings p;
   p.name = t.string("name", required);
-  const std::string kind = t.choice(
-      "kind", required,
-      {"point_displacement", "face_reaction", "volume", "stress_parts", "surface_stability"});
-  forbid_unused(t, "kind", kind,
-                {{"point", {"point_displacement", "stress_parts", "surface_stability"}},
-                 {"xi", {"point_displacement", "stress_parts", "surface_stability"}},
-                 {"face", {"face_reaction"}},
-                 {"component", {"point_displacement", "face_reaction"}}});
-  p.kind = kind == "point_displacement" ? ProbeKind::point_displacement
-           : kind == "face_reaction"    ? ProbeKind::face_reaction
-           : kind == "volume"           ? ProbeKind::volume
-           : kind == "stress_parts"     ? ProbeKind::stress_parts
-                                        : ProbeKind::surface_stability;
+  const std::string kind = t.choice("kind", required,
+                                    {"point_displacement", "face_reaction", "volume",
+                                     "stress_parts", "surface_stability", "element_layer"});
+  forbid_unused(
+      t, "kind", kind,
+      {{"point", {"point_displacement", "stress_parts", "surface_stability", "element_layer"}},
+       {"xi", {"point_displacement", "stress_parts", "surface_stability", "element_layer"}},
+       {"face", {"face_reaction"}},
+       {"component", {"point_displacement", "face_reaction"}}});
+  p.kind = kind == "point_displacement"  ? ProbeKind::point_displacement
+           : kind == "face_reaction"     ? ProbeKind::face_reaction
+           : kind == "volume"            ? ProbeKind::volume
+           : kind == "stress_parts"      ? ProbeKind::stress_parts
+           : kind == "surface_stability" ? ProbeKind::surface_stability
+                                         : ProbeKind::element_layer;
   if (auto point = t.optional_vector3("point"))
     p.point = to_vector(*point);
   if (auto xi = t.optional_vector3("xi"))

@@ -330,6 +330,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   // (surface_stability_check.hpp), or why not known.
   std::optional<SurfaceStabilityCheck> surface_stability;
   std::string surface_stability_failure;
+  // Whether the run's element itself is unstable there (element_layer_check.hpp), or why not known.
+  std::optional<ElementLayerCheck> element_layer;
+  std::string element_layer_failure;
   std::vector<double> probe_row;
   std::optional<std::vector<double>> last_probes;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(problem.size());
@@ -378,6 +381,15 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         surface_stability = assess_surface_stability(*point);
       } catch (const std::exception& e) {
         surface_stability_failure = e.what();
+      }
+    };
+    const auto assess_element = [&]() {
+      try {
+        if (!unstable_mode || !unstable_mode->ok)
+          throw std::runtime_error("no mode to place it");
+        element_layer = model->committed_element_layer(unstable_mode->peak_position);
+      } catch (const std::exception& e) {
+        element_layer_failure = e.what();
       }
     };
     SteppedProblem stepped_problem(
@@ -443,6 +455,11 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
               (surface_stability ? describe(*surface_stability)
                                  : "the free surface's stability could not be assessed: " +
                                        surface_stability_failure));
+          assess_element();
+          log("note: t = " + format_run_time(r.time) + " s: " +
+              (element_layer
+                   ? describe(*element_layer)
+                   : "the element's own stability was not assessed: " + element_layer_failure));
         }
       }
       write_newton_rows(r.step, r.time, r.dt, n, true);
@@ -586,6 +603,33 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   } else if (first_unstable) {
     s.extra["stability"]["surface_stability"] =
         Json{{"time", optional_time(first_unstable)}, {"reason", surface_stability_failure}};
+  }
+  if (element_layer) {
+    const ElementLayerCheck& c = *element_layer;
+    const auto xyz = [](const Eigen::Vector3d& v) { return Json{v.x(), v.y(), v.z()}; };
+    const auto mode = [](const iga::BlochMode& m) {
+      return Json{{"eigenvalue", m.eigenvalue},
+                  {"angles", Json{m.angles[0], m.angles[1]}},
+                  {"depth_amplitude", m.depth_amplitude}};
+    };
+    Json same_wave = Json::array();
+    for (const auto& [r, eigenvalue] : c.same_wave)
+      same_wave.push_back(Json{{"subdivision", r}, {"eigenvalue", eigenvalue}});
+    s.extra["stability"]["element_layer"] =
+        Json{{"time", optional_time(first_unstable)},
+             {"position", xyz(c.surface_position)},
+             {"degrees", c.layer.degrees},
+             {"edges", Json{xyz(c.layer.edges[0]), xyz(c.layer.edges[1]), xyz(c.layer.edges[2])}},
+             {"depth_spans", c.layer.depth_spans},
+             {"pressure_degree", c.layer.pressure_degree},
+             {"lowest", mode(c.lowest)},
+             {"lowest_halved", mode(c.lowest_halved)},
+             {"same_wave", same_wave},
+             {"shear_modulus", c.shear_modulus},
+             {"seconds", c.seconds}};
+  } else if (first_unstable) {
+    s.extra["stability"]["element_layer"] =
+        Json{{"time", optional_time(first_unstable)}, {"reason", element_layer_failure}};
   }
   if (unstable_steps > 0) {
     s.extra["notes"].push_back(

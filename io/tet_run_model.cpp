@@ -1,6 +1,7 @@
 #include "io/tet_run_model.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "io/solution_file.hpp"
 #include "io/tet_run_fields.hpp"
@@ -92,6 +93,9 @@ class TetRunModel final : public RunModel {
   std::optional<SurfacePointAt> committed_surface_point(
       const Eigen::Vector3d& near) const override {
     return surface_point_at(*model_.problem, locate_surface_point(*model_.problem, near));
+  }
+  ElementLayerCheck committed_element_layer(const Eigen::Vector3d&) const override {
+    throw std::runtime_error("it is made for the knot-span elements of NURBS solids");
   }
   FreeDofLayout free_dof_layout() const override {
     const tet::TetProblem& problem = *model_.problem;

@@ -39,6 +39,10 @@ TetProbes::TetProbes(const std::vector<ProbeSettings>& probes, const TetModel& m
     p.component = component_index(s.component);
     p.first_column = columns_.size();
     const std::string what = "[[probe]] '" + s.name + "'";
+    if (s.kind == ProbeKind::element_layer)
+      throw std::invalid_argument(what +
+                                  ": kind = \"element_layer\" checks the knot-span element of a "
+                                  "NURBS solid; this run is on tetrahedra (discretisation)");
     if (s.kind == ProbeKind::surface_stability) {
       const Eigen::Vector3d X =
           s.xi ? model.solid.volume.evaluate(model.solid.frame.solid_xi(*s.xi)) : *s.point;
@@ -92,6 +96,7 @@ TetProbes::TetProbes(const std::vector<ProbeSettings>& probes, const TetModel& m
       case ProbeKind::point_displacement:
       case ProbeKind::volume:
       case ProbeKind::surface_stability:
+      case ProbeKind::element_layer:  // refused above
         columns_.push_back(s.name);
         break;
       case ProbeKind::face_reaction:
@@ -138,6 +143,8 @@ void TetProbes::values(const tet::TetProblem& problem, std::vector<double>& out)
         break;
       case ProbeKind::surface_stability:
         out[at] = surface_stability_value(surface_point_at(problem, p.surface));
+        break;
+      case ProbeKind::element_layer:  // refused at set-up
         break;
       case ProbeKind::stress_parts: {
         // The converged state at the quadrature point; its parts from the committed (converged)

@@ -61,7 +61,7 @@ std::optional<SurfaceLocation> locate_surface_point(const tet::TetProblem& probl
           (problem.space().position(e, point) - centroid).norm())
         point = q;
     }
-    return SurfaceLocation{e, point, centroid, normal};
+    return SurfaceLocation{e, point, centroid, normal, -1, 0};
   }
   return std::nullopt;  // a boundary triangle of no element: not a mesh read_msh accepts
 }

@@ -626,13 +626,30 @@ TEST_F(SlowRunCli, CompressedColumnReportsItsUnstableEquilibria) {
   EXPECT_GT(s_surface, 0.1);
   EXPECT_LT(s_surface, 0.91262);
   EXPECT_NE(r.err.find("is stable as a deformed half-space"), std::string::npos) << r.err;
+  // The element itself there: the run's knot-span element tiled along that surface point (one
+  // radial span down to the axis, clamped) and deformed to its state is stable (the lowest Bloch
+  // eigenvalue +2.4e6 Pa/m^2 measured), so the check says the instability needs the body, as
+  // Euler buckling does.
+  const nlohmann::json& layer = stability["element_layer"];
+  ASSERT_TRUE(layer.is_object()) << stability.dump(2);
+  EXPECT_DOUBLE_EQ(layer["time"].get<double>(), first);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_DOUBLE_EQ(layer["position"][i].get<double>(), surface["position"][i].get<double>());
+  EXPECT_EQ(layer["depth_spans"].size(), 1u);
+  EXPECT_EQ(layer["pressure_degree"].get<int>(), 0);
+  EXPECT_GT(layer["lowest"]["eigenvalue"].get<double>(), 0.0);
+  ASSERT_EQ(layer["same_wave"].size(), 2u);
+  EXPECT_EQ(layer["same_wave"][1]["subdivision"].get<int>(), 4);
+  EXPECT_NE(r.err.find("the element is stable at this state"), std::string::npos) << r.err;
   // The numbers the README quotes for the column.
   std::printf(
       "column: first unstable at t = %g s; mode radius %.3g m, %.3g s; smallest e %.4g mu "
-      "(%.4g mu near the mode), %.3g s; surface at z = %.3g m: rho c^2 = %.3g mu, %.3g s\n",
+      "(%.4g mu near the mode), %.3g s; surface at z = %.3g m: rho c^2 = %.3g mu, %.3g s; "
+      "element layer %.3g Pa/m^2, %.3g s\n",
       first, mode["radius"].get<double>(), mode["seconds"].get<double>(), smallest,
       near["smallest_over_shear_modulus"].get<double>(), material["seconds"].get<double>(),
-      surface_z, s_surface, surface["seconds"].get<double>());
+      surface_z, s_surface, surface["seconds"].get<double>(),
+      layer["lowest"]["eigenvalue"].get<double>(), layer["seconds"].get<double>());
 }
 
 // The surface_stability probe on the barrel clamped at both ends and shortened by 3 mm per step:
@@ -647,7 +664,8 @@ TEST_F(SlowRunCli, SurfaceStabilityProbeFallsAsTheBarrelIsShortened) {
                    "[[boundary]]\nface = \"v1\"\ntype = \"displacement\"\n"
                    "velocity = [0.0, 0.0, -0.03]\n",
                    "end = 0.3\ndt = 0.1\nadaptive = false\n") +
-          "[[probe]]\nname = \"side\"\nkind = \"surface_stability\"\npoint = [0.02, 0.0, 0.025]\n");
+          "[[probe]]\nname = \"side\"\nkind = \"surface_stability\"\npoint = [0.02, 0.0, 0.025]\n"
+          "[[probe]]\nname = \"cell\"\nkind = \"element_layer\"\npoint = [0.02, 0.0, 0.025]\n");
   const fs::path out = dir_ / "surface_probe";
   const CliResult r = run("run " + scene.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
@@ -660,10 +678,13 @@ TEST_F(SlowRunCli, SurfaceStabilityProbeFallsAsTheBarrelIsShortened) {
   double previous = 0.91262 * mu;
   for (const auto& row : probes.rows) {
     const double s = row[probes.column("side")];
-    std::printf("t = %g s: rho c^2 = %.4f mu\n", row[probes.column("time")], s / mu);
+    std::printf("t = %g s: rho c^2 = %.4f mu, element layer %.4g Pa/m^2\n",
+                row[probes.column("time")], s / mu, row[probes.column("cell")]);
     EXPECT_LT(s, previous);
     EXPECT_GT(s, 0.3 * mu);
     previous = s;
+    // The element's own layer there stays stable (+2.3e6 Pa/m^2 measured at every step).
+    EXPECT_GT(row[probes.column("cell")], 0.0);
   }
 }
 

@@ -541,24 +541,25 @@ TEST_F(SceneLoader, ProbesAreChecked) {
   EXPECT_EQ(error(xi).message(), "'xi' in [[probe]] #1 element 2 must be in [0, 1] (got 1.5)");
   const std::string name = minimal() + "[[probe]]\nname = \"a b\"\nkind = \"volume\"\n";
   EXPECT_EQ(error(name).line(), line_containing(name, "a b"));
-  // The surface check is placed by a point (or xi), never by a face or a component.
-  const Scene surface = parse(minimal() +
-                              "[[probe]]\nname = \"deep\"\nkind = \"surface_stability\"\n"
-                              "point = [0.001, 0.002, 0.01]\n");
-  ASSERT_EQ(surface.probes.size(), 1u);
-  EXPECT_EQ(surface.probes[0].kind, ProbeKind::surface_stability);
-  EXPECT_EQ(surface.probes[0].point, Eigen::Vector3d(0.001, 0.002, 0.01));
-  EXPECT_EQ(
-      error(minimal() + "[[probe]]\nname = \"deep\"\nkind = \"surface_stability\"\n").message(),
-      "'point' in [[probe]] #1 or 'xi' (one of them) is needed by kind = "
-      "\"surface_stability\"");
-  const std::string component = minimal() +
-                                "[[probe]]\nname = \"deep\"\nkind = \"surface_stability\"\n"
-                                "point = [0, 0, 0]\ncomponent = \"x\"\n";
-  EXPECT_EQ(error(component).line(), line_containing(component, "component"));
+  // The surface check and the element's layer are placed by a point (or xi), never by a face or a
+  // component.
+  for (const ProbeKind kind : {ProbeKind::surface_stability, ProbeKind::element_layer}) {
+    const std::string head =
+        minimal() + "[[probe]]\nname = \"deep\"\nkind = \"" + to_string(kind) + "\"\n";
+    const Scene placed = parse(head + "point = [0.001, 0.002, 0.01]\n");
+    ASSERT_EQ(placed.probes.size(), 1u);
+    EXPECT_EQ(placed.probes[0].kind, kind);
+    EXPECT_EQ(placed.probes[0].point, Eigen::Vector3d(0.001, 0.002, 0.01));
+    EXPECT_EQ(parse(head + "xi = [0.5, 0.5, 0]\n").probes[0].xi, Eigen::Vector3d(0.5, 0.5, 0.0));
+    EXPECT_EQ(error(head).message(),
+              std::string("'point' in [[probe]] #1 or 'xi' (one of them) is needed by kind = \"") +
+                  to_string(kind) + "\"");
+    const std::string component = head + "point = [0, 0, 0]\ncomponent = \"x\"\n";
+    EXPECT_EQ(error(component).line(), line_containing(component, "component"));
+  }
   const std::string typo = minimal() + "[[probe]]\nname = \"deep\"\nkind = \"surface\"\n";
-  EXPECT_NE(error(typo).message().find("surface_stability"), std::string::npos)
-      << error(typo).message();
+  for (const char* choice : {"surface_stability", "element_layer"})
+    EXPECT_NE(error(typo).message().find(choice), std::string::npos) << error(typo).message();
 }
 
 TEST_F(SceneLoader, ProgrammaticScenesValidateWithQualifiedKeys) {

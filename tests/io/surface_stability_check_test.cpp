@@ -23,6 +23,7 @@
 #include <memory>
 #include <string>
 
+#include "io/element_layer_check.hpp"
 #include "io/iga_run_model.hpp"
 #include "io/iga_run_setup.hpp"
 #include "io/iga_surface_point.hpp"
@@ -158,6 +159,26 @@ TEST_P(SurfacePointOfModel, FreeBoundaryOfTheClampedBarrelAndTheRayleighWaveAtRe
   EXPECT_LT((check.current_normal - side->normal).norm(), 1e-12);
   EXPECT_LT(std::abs(check.free_surface_pressure), 1e-9 * mu);
   EXPECT_LT(check.shear_traction, 1e-9 * mu);
+
+  // The run's element tiled along the same surface point (element_layer_check.hpp): NURBS only.
+  // At rest it is stable, and so is the same wave on finer elements.
+  if (tet) {
+    try {
+      model->committed_element_layer({0.02, 0.0, 0.025});
+      ADD_FAILURE() << "no throw for tetrahedra";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("knot-span elements"), std::string::npos) << e.what();
+    }
+  } else {
+    const ElementLayerCheck layer = model->committed_element_layer({0.02, 0.0, 0.025});
+    EXPECT_TRUE(layer.surface_position.isApprox(side->surface_position));
+    EXPECT_EQ(layer.layer.degrees, (std::array<int, 3>{2, 2, 2}));  // (u, v) along, w deep
+    EXPECT_GT(layer.lowest.eigenvalue, 0.0);
+    for (const auto& [r, eigenvalue] : layer.same_wave)
+      EXPECT_GT(eigenvalue, 0.0) << r;
+    EXPECT_NE(describe(layer).find("the element is stable at this state"), std::string::npos)
+        << describe(layer);
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Iga, SurfacePointOfModel, ::testing::Values("iga"));
