@@ -32,6 +32,14 @@ std::vector<double> greville(const geometry::KnotVector& kv) {
   return g;
 }
 
+// The edge vectors as the columns of the layer's (affine) dX/dxi.
+Eigen::Matrix3d edge_matrix(const LayerGeometry& layer) {
+  Eigen::Matrix3d E;
+  for (int d = 0; d < 3; ++d)
+    E.col(d) = layer.edges[d];
+  return E;
+}
+
 void check_layer(const LayerGeometry& layer, const LayerState& state) {
   if (state.law == nullptr || !state.law->has_volumetric_split())
     throw std::invalid_argument(
@@ -54,9 +62,7 @@ void check_layer(const LayerGeometry& layer, const LayerState& state) {
     if (!(w > 0.0) || !std::isfinite(w))
       throw std::invalid_argument("periodic layer: a depth span is not positive");
   }
-  Eigen::Matrix3d E;
-  for (int d = 0; d < 3; ++d)
-    E.col(d) = layer.edges[d];
+  const Eigen::Matrix3d E = edge_matrix(layer);
   const double scale = E.col(0).norm() * E.col(1).norm() * E.col(2).norm();
   if (!(std::abs(E.determinant()) > 1e-9 * scale))
     throw std::invalid_argument("periodic layer: the edge vectors do not span a volume");
@@ -79,10 +85,7 @@ LayerGeometry subdivided(const LayerGeometry& layer, int r) {
 PeriodicLayer::PeriodicLayer(const LayerGeometry& given, const LayerState& state) {
   check_layer(given, state);
   LayerGeometry layer = given;
-  Eigen::Matrix3d E;
-  for (int d = 0; d < 3; ++d)
-    E.col(d) = layer.edges[d];
-  if (E.determinant() < 0.0) {
+  if (edge_matrix(layer).determinant() < 0.0) {
     // Space needs det dX/dxi > 0: exchange the surface directions, and their angles in lowest_at.
     std::swap(layer.edges[0], layer.edges[1]);
     std::swap(layer.degrees[0], layer.degrees[1]);

@@ -178,6 +178,9 @@ class Problem : public solver::NonlinearProblem {
   LayerState committed_layer_state(int e, int q) const;
 
  private:
+  // The history of quadrature point q of element e before the last commit (history_size()
+  // values): what the step that reached the committed state evaluated the law from.
+  std::span<const double> history_before_step(int e, int q) const;
   // use_base: mixed formulation, update p~, J~ from the current base (when there is one) instead
   // of projecting exactly (element_kernels.hpp, continuum/mixed_bases.hpp). With increment
   // (full vector), also K_increment = K_all increment (all DOFs, element by element).

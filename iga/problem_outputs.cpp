@@ -49,27 +49,27 @@ std::vector<continuum::PointEllipticity> Problem::committed_ellipticity(int norm
                                           normals, options_.threads);
 }
 
-continuum::SteppedResponse Problem::committed_response(int e, int q) const {
-  const PointState st = state_at_point(e, q);
+std::span<const double> Problem::history_before_step(int e, int q) const {
+  const std::size_t hs = static_cast<std::size_t>(history_size_);
   const std::size_t i =
       static_cast<std::size_t>(e) * space_.points_per_element() + static_cast<std::size_t>(q);
-  const std::size_t hs = static_cast<std::size_t>(history_size_);
-  return continuum::stepped_response(law_, st.field.F, fibres_[i],
-                                     std::span<const double>(history_previous_.data() + i * hs, hs),
+  return std::span<const double>(history_previous_.data() + i * hs, hs);
+}
+
+continuum::SteppedResponse Problem::committed_response(int e, int q) const {
+  const PointState st = state_at_point(e, q);
+  return continuum::stepped_response(law_, st.field.F, st.fibre, history_before_step(e, q),
                                      committed_time_, committed_dt_, st.p_bar);
 }
 
 LayerState Problem::committed_layer_state(int e, int q) const {
   const PointState st = state_at_point(e, q);
-  const std::size_t i =
-      static_cast<std::size_t>(e) * space_.points_per_element() + static_cast<std::size_t>(q);
-  const std::size_t hs = static_cast<std::size_t>(history_size_);
+  const std::span<const double> history = history_before_step(e, q);
   LayerState out;
   out.law = &law_;
   out.F = std::cbrt(st.J_bar / st.field.F.determinant()) * st.field.F;
-  out.fibre = fibres_[i];
-  out.history.assign(history_previous_.begin() + static_cast<std::ptrdiff_t>(i * hs),
-                     history_previous_.begin() + static_cast<std::ptrdiff_t>((i + 1) * hs));
+  out.fibre = st.fibre;
+  out.history.assign(history.begin(), history.end());
   out.time = committed_time_;
   out.dt = committed_dt_;
   return out;

@@ -121,11 +121,7 @@ class IgaRunModel final : public RunModel {
     const std::optional<SurfaceLocation> where = locate_surface_point(*model_.problem, near);
     if (!where)
       throw std::runtime_error("the body has no traction-free boundary");
-    try {
-      return assess_element_layer(*model_.problem, *where);
-    } catch (const std::invalid_argument& e) {
-      throw std::runtime_error(e.what());
-    }
+    return assess_element_layer(*model_.problem, *where);
   }
   FreeDofLayout free_dof_layout() const override {
     const iga::DofMap& dofs = *model_.dofs;

@@ -168,8 +168,9 @@ class RunModel {
   virtual std::optional<SurfacePointAt> committed_surface_point(
       const Eigen::Vector3d& near) const = 0;
   // The run's element tiled along the surface nearest `near` at the committed state
-  // (element_layer_check.hpp). Throws std::runtime_error saying why where there is no such check
-  // (tetrahedra, the displacement formulation, no traction-free boundary).
+  // (element_layer_check.hpp). Throws (std::runtime_error, std::invalid_argument) saying why where
+  // there is no such check (tetrahedra, the displacement formulation, no traction-free boundary)
+  // or the element fails at the state.
   virtual ElementLayerCheck committed_element_layer(const Eigen::Vector3d& near) const = 0;
 };
 

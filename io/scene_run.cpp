@@ -29,6 +29,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using Json = nlohmann::ordered_json;
 
+// A 3-vector as a JSON array [x, y, z] (the summary's positions, normals and directions).
+Json xyz_json(const Eigen::Vector3d& v) {
+  return Json{v.x(), v.y(), v.z()};
+}
+
 constexpr double kFloor = 10.0;  // round-off floors of the Newton tolerances, see newton_settings
 constexpr double kCorrection = 1e-7;  // round-off correction tolerance / body size, ditto
 
@@ -544,7 +549,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     if (m.ok) {
       mode["eigenvalues"] = std::vector<double>(m.eigenvalues.begin(), m.eigenvalues.end());
       mode["negative"] = m.negative;
-      mode["peak_position"] = {m.peak_position.x(), m.peak_position.y(), m.peak_position.z()};
+      mode["peak_position"] = xyz_json(m.peak_position);
       mode["volume_share"] = m.volume_share;
       mode["radius"] = m.radius;
       mode["file"] = mode_file;
@@ -562,8 +567,8 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     const auto point = [&](const EllipticityAt& p) {
       return Json{{"smallest", p.smallest},
                   {"smallest_over_shear_modulus", p.smallest / m.shear_modulus},
-                  {"position", {p.position.x(), p.position.y(), p.position.z()}},
-                  {"normal", {p.normal.x(), p.normal.y(), p.normal.z()}}};
+                  {"position", xyz_json(p.position)},
+                  {"normal", xyz_json(p.normal)}};
     };
     Json e{{"time", optional_time(first_unstable)},
            {"strongly_elliptic", m.not_elliptic == 0},
@@ -586,16 +591,15 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   }
   if (surface_stability) {
     const SurfaceStabilityCheck& c = *surface_stability;
-    const auto xyz = [](const Eigen::Vector3d& v) { return Json{v.x(), v.y(), v.z()}; };
     s.extra["stability"]["surface_stability"] =
         Json{{"time", optional_time(first_unstable)},
-             {"position", xyz(c.point.surface_position)},
-             {"reference_normal", xyz(c.point.normal)},
-             {"normal", xyz(c.current_normal)},
-             {"quadrature_point", xyz(c.point.position)},
+             {"position", xyz_json(c.point.surface_position)},
+             {"reference_normal", xyz_json(c.point.normal)},
+             {"normal", xyz_json(c.current_normal)},
+             {"quadrature_point", xyz_json(c.point.position)},
              {"smallest", c.smallest},
              {"smallest_over_shear_modulus", c.smallest / c.point.shear_modulus},
-             {"direction", xyz(c.direction)},
+             {"direction", xyz_json(c.direction)},
              {"free_surface_pressure", c.free_surface_pressure},
              {"element_pressure", c.point.response.pressure},
              {"shear_traction", c.shear_traction},
@@ -606,7 +610,6 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   }
   if (element_layer) {
     const ElementLayerCheck& c = *element_layer;
-    const auto xyz = [](const Eigen::Vector3d& v) { return Json{v.x(), v.y(), v.z()}; };
     const auto mode = [](const iga::BlochMode& m) {
       return Json{{"eigenvalue", m.eigenvalue},
                   {"angles", Json{m.angles[0], m.angles[1]}},
@@ -615,18 +618,19 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     Json same_wave = Json::array();
     for (const auto& [r, eigenvalue] : c.same_wave)
       same_wave.push_back(Json{{"subdivision", r}, {"eigenvalue", eigenvalue}});
-    s.extra["stability"]["element_layer"] =
-        Json{{"time", optional_time(first_unstable)},
-             {"position", xyz(c.surface_position)},
-             {"degrees", c.layer.degrees},
-             {"edges", Json{xyz(c.layer.edges[0]), xyz(c.layer.edges[1]), xyz(c.layer.edges[2])}},
-             {"depth_spans", c.layer.depth_spans},
-             {"pressure_degree", c.layer.pressure_degree},
-             {"lowest", mode(c.lowest)},
-             {"lowest_halved", mode(c.lowest_halved)},
-             {"same_wave", same_wave},
-             {"shear_modulus", c.shear_modulus},
-             {"seconds", c.seconds}};
+    s.extra["stability"]["element_layer"] = Json{
+        {"time", optional_time(first_unstable)},
+        {"position", xyz_json(c.surface_position)},
+        {"degrees", c.layer.degrees},
+        {"edges",
+         Json{xyz_json(c.layer.edges[0]), xyz_json(c.layer.edges[1]), xyz_json(c.layer.edges[2])}},
+        {"depth_spans", c.layer.depth_spans},
+        {"pressure_degree", c.layer.pressure_degree},
+        {"lowest", mode(c.lowest)},
+        {"lowest_halved", mode(c.lowest_halved)},
+        {"same_wave", same_wave},
+        {"shear_modulus", c.shear_modulus},
+        {"seconds", c.seconds}};
   } else if (first_unstable) {
     s.extra["stability"]["element_layer"] =
         Json{{"time", optional_time(first_unstable)}, {"reason", element_layer_failure}};
