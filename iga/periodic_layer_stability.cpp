@@ -179,6 +179,31 @@ PeriodicLayer::PeriodicLayer(const LayerGeometry& given, const LayerState& state
   }
 }
 
+PeriodicLayer::PeriodicLayer(std::vector<ColumnElement> column, Eigen::VectorXd lumped)
+    : column_(std::move(column)), lumped_(std::move(lumped)) {
+  depth_rows_ = static_cast<int>(lumped_.size());
+  if (column_.empty() || depth_rows_ < 2)
+    throw std::invalid_argument("periodic layer: a column needs elements and two depth rows");
+  for (const ColumnElement& el : column_) {
+    const Eigen::Index n = 3 * static_cast<Eigen::Index>(el.row.size());
+    if (el.offset.size() != el.row.size() || el.tangent.rows() != n || el.tangent.cols() != n)
+      throw std::invalid_argument("periodic layer: a column element's tangent is " +
+                                  std::to_string(el.tangent.rows()) + " x " +
+                                  std::to_string(el.tangent.cols()) + " for " +
+                                  std::to_string(el.row.size()) + " functions");
+    for (int r : el.row) {
+      if (r < 0 || r >= depth_rows_)
+        throw std::invalid_argument("periodic layer: depth row " + std::to_string(r) +
+                                    " is not among the " + std::to_string(depth_rows_));
+    }
+  }
+  for (int r = 0; r + 1 < depth_rows_; ++r) {
+    if (!(lumped_[r] > 0.0))
+      throw std::invalid_argument("periodic layer: the lumped volume of depth row " +
+                                  std::to_string(r) + " is not positive");
+  }
+}
+
 BlochMode PeriodicLayer::lowest_at(const Eigen::Vector2d& angles) const {
   const Eigen::Vector2d theta = swapped_ ? Eigen::Vector2d(angles[1], angles[0]) : angles;
   // The clamped row (the last) has no unknowns.

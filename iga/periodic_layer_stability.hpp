@@ -72,6 +72,15 @@ struct BlochMode {
   std::vector<double> depth_amplitude;               // |U_k| per depth row, the largest 1
 };
 
+// One element of a column through the depth, as the Bloch sum takes it: its tangent K_e (3 n_en
+// square, symmetric up to round-off), and for each local function its depth row (0 at the free
+// surface) and its in-plane index (i, j) along the two surface directions.
+struct ColumnElement {
+  Eigen::MatrixXd tangent;
+  std::vector<int> row;
+  std::vector<Eigen::Vector2d> offset;
+};
+
 class PeriodicLayer {
  public:
   // Builds the layer and its column's element tangents with the mixed kernel. Throws
@@ -79,6 +88,11 @@ class PeriodicLayer {
   // a volume, or bad degrees, spans or counts; std::runtime_error naming the failure when the
   // kernel fails at the state (J <= 0, the law's local solve).
   PeriodicLayer(const LayerGeometry& layer, const LayerState& state);
+  // A column given element by element (a body's own elements, each at its own state), tiled by
+  // translation along the surface. lumped: the volume of each depth row per cell (m^3); the last
+  // row is clamped. Throws std::invalid_argument for an empty column, a tangent whose size does
+  // not match its functions, a row outside the lumped rows, or a non-positive lumped volume.
+  PeriodicLayer(std::vector<ColumnElement> column, Eigen::VectorXd lumped);
 
   // The lowest eigenvalue (and its depth profile) of K(theta) against the lumped volumes.
   BlochMode lowest_at(const Eigen::Vector2d& angles) const;
@@ -91,11 +105,6 @@ class PeriodicLayer {
   int depth_rows() const { return depth_rows_; }
 
  private:
-  struct ColumnElement {
-    Eigen::MatrixXd tangent;              // K_e, 3 n_en square
-    std::vector<int> row;                 // depth row of each local function
-    std::vector<Eigen::Vector2d> offset;  // its in-plane index (i, j)
-  };
   std::vector<ColumnElement> column_;
   Eigen::VectorXd lumped_;  // volume per cell of each depth row, m^3
   int depth_rows_ = 0;

@@ -176,6 +176,14 @@ class Problem : public solver::NonlinearProblem {
   // (J~ / det F)^(1/3), which keeps its isochoric part and gives the layer, whose J~ is det F, the
   // element's p~ = U'(J~). Throws like state_at_point.
   LayerState committed_layer_state(int e, int q) const;
+  // Element e's tangent K_e (3 n_en square, its functions in space().control_points(e) order; in
+  // the mixed formulation with p~, J~ condensed, as assembled) at the committed state, the law
+  // evaluated as the step that reached it evaluated it. With `homogeneous`, on the element's own
+  // geometry at that homogeneous state instead: u = (F - I) X at the control points (exactly
+  // (F - I) X everywhere: the rational basis reproduces X), the state's fibre and history at every
+  // quadrature point, its time and dt. Throws std::invalid_argument for an element out of range or
+  // a history of the wrong size, std::runtime_error naming the failure when the kernel fails.
+  Eigen::MatrixXd committed_element_tangent(int e, const LayerState* homogeneous = nullptr) const;
 
  private:
   // The history of quadrature point q of element e before the last commit (history_size()
@@ -189,9 +197,9 @@ class Problem : public solver::NonlinearProblem {
                                     const Eigen::VectorXd* increment = nullptr,
                                     Eigen::VectorXd* K_increment = nullptr);
   std::string describe_failure(int e, const KernelStatus& s) const;
-  // Runs the element kernel (no tangent) at the committed state with the pre-step history into a
-  // workspace of its own; throws std::runtime_error when the kernel fails.
-  void committed_element_pass(int e, ElementWorkspace& ws) const;
+  // Runs the element kernel (with the tangent when asked) at the committed state with the pre-step
+  // history into a workspace of its own; throws std::runtime_error when the kernel fails.
+  void committed_element_pass(int e, ElementWorkspace& ws, bool want_tangent = false) const;
 
   const Space& space_;
   const DofMap& dofs_;

@@ -159,7 +159,7 @@ PointState Problem::interpolate_state(int e, std::span<const PointState> states,
   return st;
 }
 
-void Problem::committed_element_pass(int e, ElementWorkspace& ws) const {
+void Problem::committed_element_pass(int e, ElementWorkspace& ws, bool want_tangent) const {
   const int nqp = space_.points_per_element();
   const std::size_t hs = static_cast<std::size_t>(history_size_);
   const auto cps = space_.control_points(e);
@@ -171,11 +171,51 @@ void Problem::committed_element_pass(int e, ElementWorkspace& ws) const {
       law_, fibres_, e, nqp, committed_time_, committed_dt_, history_previous_, scratch.data());
   const ElementView view = element_view(space_, e);
   const KernelStatus ks = formulation_ == Formulation::mixed
-                              ? mixed_kernel(view, ctx, pressure_, e, nullptr, false, ws)
-                              : displacement_kernel(view, ctx, false, ws);
+                              ? mixed_kernel(view, ctx, pressure_, e, nullptr, want_tangent, ws)
+                              : displacement_kernel(view, ctx, want_tangent, ws);
   if (!ks.ok()) {
     throw std::runtime_error("committed state: " + describe_failure(e, ks));
   }
+}
+
+Eigen::MatrixXd Problem::committed_element_tangent(int e, const LayerState* homogeneous) const {
+  if (e < 0 || e >= space_.num_elements()) {
+    throw std::invalid_argument("committed_element_tangent: element " + std::to_string(e) +
+                                " out of range");
+  }
+  const int nqp = space_.points_per_element();
+  const bool mixed = formulation_ == Formulation::mixed;
+  ElementWorkspace ws(space_.functions_per_element(), nqp, mixed ? pressure_.size() : 1);
+  if (homogeneous == nullptr) {
+    committed_element_pass(e, ws, true);
+    return ws.ke;
+  }
+  const std::size_t hs = static_cast<std::size_t>(history_size_);
+  if (homogeneous->history.size() != hs) {
+    throw std::invalid_argument("committed_element_tangent: the homogeneous state has " +
+                                std::to_string(homogeneous->history.size()) +
+                                " history values, the law " + std::to_string(hs));
+  }
+  const Eigen::Matrix3d gradient = homogeneous->F - Eigen::Matrix3d::Identity();
+  const auto cps = space_.control_points(e);
+  for (std::size_t a = 0; a < cps.size(); ++a) {
+    ws.ue.col(static_cast<Eigen::Index>(a)) =
+        gradient * space_.volume().points()[static_cast<std::size_t>(cps[a])];
+  }
+  const std::vector<Eigen::Vector3d> fibres(static_cast<std::size_t>(nqp), homogeneous->fibre);
+  std::vector<double> history, scratch(static_cast<std::size_t>(nqp) * hs);
+  for (int q = 0; q < nqp; ++q)
+    history.insert(history.end(), homogeneous->history.begin(), homogeneous->history.end());
+  const MaterialContext ctx = continuum::element_material_context(
+      law_, fibres, 0, nqp, homogeneous->time, homogeneous->dt, history, scratch.data());
+  const ElementView view = element_view(space_, e);
+  const KernelStatus ks = mixed ? mixed_kernel(view, ctx, pressure_, e, nullptr, true, ws)
+                                : displacement_kernel(view, ctx, true, ws);
+  if (!ks.ok()) {
+    throw std::runtime_error("homogeneous state on the element's geometry: " +
+                             describe_failure(e, ks));
+  }
+  return ws.ke;
 }
 
 // States at the quadrature points from one kernel pass: F, S, J (and J~, p~) as assembled.

@@ -10,27 +10,9 @@
 #include <stdexcept>
 
 #include "iga/problem.hpp"
+#include "io/bloch_wave_text.hpp"
 
 namespace isomuscle::io {
-
-namespace {
-
-// Spans per wavelength along a surface direction, 2 pi / |theta| ("inf" for a constant phase).
-std::string spans_per_wave(double theta) {
-  if (std::abs(theta) < 1e-3)
-    return "inf";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", 2.0 * std::numbers::pi / std::abs(theta));
-  return text;
-}
-
-std::string number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%+.3g", x);
-  return text;
-}
-
-}  // namespace
 
 iga::LayerGeometry element_layer_at(const iga::Problem& problem, const SurfaceLocation& where) {
   if (where.side_direction < 0 || where.side_direction > 2)
@@ -80,6 +62,7 @@ ElementLayerCheck assess_element_layer(const iga::Problem& problem, const Surfac
   check.same_wave.emplace_back(4, iga::PeriodicLayer(iga::subdivided(layer, 4), state)
                                       .lowest_at(check.lowest.angles / 4.0)
                                       .eigenvalue);
+  check.column = assess_element_column(problem, where);
   check.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
   return check;
 }
@@ -109,25 +92,28 @@ std::string describe(const ElementLayerCheck& c) {
                 "cut 2 and 4 times has %s and %s Pa/m^2",
                 c.surface_position.x(), c.surface_position.y(), c.surface_position.z(),
                 1e3 * l.edges[0].norm(), 1e3 * l.edges[1].norm(), l.depth_spans.size(), 1e3 * depth,
-                l.pressure_degree, number(c.lowest.eigenvalue).c_str(),
-                number(c.lowest.eigenvalue * 1e-6 / c.shear_modulus).c_str(),
+                l.pressure_degree, signed_number(c.lowest.eigenvalue).c_str(),
+                signed_number(c.lowest.eigenvalue * 1e-6 / c.shear_modulus).c_str(),
                 spans_per_wave(c.lowest.angles[0]).c_str(),
                 spans_per_wave(c.lowest.angles[1]).c_str(),
-                number(c.lowest_halved.eigenvalue).c_str(),
-                number(c.same_wave.at(0).second).c_str(), number(c.same_wave.at(1).second).c_str());
+                signed_number(c.lowest_halved.eigenvalue).c_str(),
+                signed_number(c.same_wave.at(0).second).c_str(),
+                signed_number(c.same_wave.at(1).second).c_str());
   std::string text = head;
   if (c.lowest.eigenvalue > 0.0)
-    return text +
-           ": the element is stable at this state, so the instability needs the body itself (its "
-           "geometry, the gradients of its state), not this local state alone";
-  if (c.same_wave.back().second > 0.0)
-    return text +
-           ": the element is unstable where finer elements are not, so the instability belongs "
-           "to the discretisation (a spurious mode of the element whose wavelength and onset "
-           "follow the mesh), not to the material or its surface";
-  return text +
-         ": the same wave stays unstable on finer elements, an instability of the continuum at "
-         "this state";
+    text +=
+        ": the element is stable at this state, so the instability needs the body itself (its "
+        "geometry, the gradients of its state), not this local state alone";
+  else if (c.same_wave.back().second > 0.0)
+    text +=
+        ": the element is unstable where finer elements are not, so the instability belongs "
+        "to the discretisation (a spurious mode of the element whose wavelength and onset "
+        "follow the mesh), not to the material or its surface";
+  else
+    text +=
+        ": the same wave stays unstable on finer elements, an instability of the continuum at "
+        "this state";
+  return text + "; " + describe(c.column, c.shear_modulus);
 }
 
 }  // namespace isomuscle::io

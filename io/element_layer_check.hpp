@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "iga/periodic_layer_stability.hpp"
+#include "io/element_column_check.hpp"
 #include "io/surface_location.hpp"
 
 namespace isomuscle::iga {
@@ -37,6 +38,9 @@ struct ElementLayerCheck {
   iga::BlochMode lowest, lowest_halved;
   // The eigenvalue (Pa/m^2) of lowest's wave on elements subdivided r = 2 and 4 times (theta / r).
   std::vector<std::pair<int, double>> same_wave;
+  // The body's own elements through the depth there, tiled the same way
+  // (element_column_check.hpp): whether the depth's gradients or element shapes make it unstable.
+  ElementColumnCheck column;
   double seconds = 0.0;
 };
 

@@ -130,8 +130,11 @@ IgaProbes::IgaProbes(const std::vector<ProbeSettings>& probes, const IgaModel& m
       case ProbeKind::point_displacement:
       case ProbeKind::volume:
       case ProbeKind::surface_stability:
+        columns_.push_back(s.name);
+        break;
       case ProbeKind::element_layer:
         columns_.push_back(s.name);
+        columns_.push_back(s.name + ".column");
         break;
       case ProbeKind::face_reaction:
         p.nodes = selected_nodes(model, *s.face, what);
@@ -240,6 +243,7 @@ void IgaProbes::values(const iga::Problem& problem, std::vector<double>& out) co
         break;
       case ProbeKind::element_layer:
         out[p.first_column] = element_layer_value(problem, p.surface);
+        out[p.first_column + 1] = element_column_value(problem, p.surface);
         break;
     }
   }

@@ -23,6 +23,9 @@
 //                                           deformed to its state, Pa/m^2
 //                                           (io/element_layer_check.hpp; <= 0: the element
 //                                           itself is unstable there; mixed formulation only)
+//                       <name>.column       the same for the body's own column of elements
+//                                           through the depth there, each at its state
+//                                           (io/element_column_check.hpp)
 //
 // Points are given physically (point inversion, geometry/point_inversion.hpp) or parametrically
 // (xi in [0, 1]^3, scene naming: iga_run_setup.hpp). Stress parts are the law's converged parts at

@@ -232,7 +232,9 @@ struct OutputSettings {
 // deformed half-space (io/surface_stability_check.hpp; <= 0: Biot's surface instability), a few
 // seconds a step. element_layer (NURBS solids, mixed formulation): the lowest Bloch eigenvalue
 // (Pa/m^2) of the run's element tiled along the free surface nearest the point and deformed to
-// its state (io/element_layer_check.hpp; <= 0: the element itself is unstable there).
+// its state (io/element_layer_check.hpp; <= 0: the element itself is unstable there), and in
+// <name>.column the same for the body's own elements through the depth there, each at its own
+// state (io/element_column_check.hpp).
 enum class ProbeKind {
   point_displacement,
   face_reaction,

@@ -629,6 +629,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
         {"lowest", mode(c.lowest)},
         {"lowest_halved", mode(c.lowest_halved)},
         {"same_wave", same_wave},
+        {"body_column", Json{{"elements", c.column.elements},
+                             {"lowest", mode(c.column.lowest)},
+                             {"homogeneous", mode(c.column.homogeneous)}}},
         {"shear_modulus", c.shear_modulus},
         {"seconds", c.seconds}};
   } else if (first_unstable) {

@@ -641,15 +641,28 @@ TEST_F(SlowRunCli, CompressedColumnReportsItsUnstableEquilibria) {
   ASSERT_EQ(layer["same_wave"].size(), 2u);
   EXPECT_EQ(layer["same_wave"][1]["subdivision"].get<int>(), 4);
   EXPECT_NE(r.err.find("the element is stable at this state"), std::string::npos) << r.err;
+  // The body's own elements there (the one radial span down to the axis), each at its own state,
+  // tiled along the surface: stable too, and so with the surface point's state, so the log says
+  // the instability needs variation along the surface, as a buckle of the whole column does.
+  const nlohmann::json& column = layer["body_column"];
+  EXPECT_EQ(column["elements"].get<int>(), 1);
+  const double column_lowest = column["lowest"]["eigenvalue"].get<double>();
+  EXPECT_GT(column_lowest, 0.0);
+  EXPECT_GT(column["homogeneous"]["eigenvalue"].get<double>(), 0.0);
+  EXPECT_EQ(column["lowest"]["depth_amplitude"].size(), 3u);  // degree 2, the axis row clamped
+  EXPECT_NE(r.err.find("a wave of the column is stable with the depth's gradients in"),
+            std::string::npos)
+      << r.err;
   // The numbers the README quotes for the column.
   std::printf(
       "column: first unstable at t = %g s; mode radius %.3g m, %.3g s; smallest e %.4g mu "
       "(%.4g mu near the mode), %.3g s; surface at z = %.3g m: rho c^2 = %.3g mu, %.3g s; "
-      "element layer %.3g Pa/m^2, %.3g s\n",
+      "element layer %.3g Pa/m^2 (body column %.3g, %.3g at the surface point's state), %.3g s\n",
       first, mode["radius"].get<double>(), mode["seconds"].get<double>(), smallest,
       near["smallest_over_shear_modulus"].get<double>(), material["seconds"].get<double>(),
       surface_z, s_surface, surface["seconds"].get<double>(),
-      layer["lowest"]["eigenvalue"].get<double>(), layer["seconds"].get<double>());
+      layer["lowest"]["eigenvalue"].get<double>(), column_lowest,
+      column["homogeneous"]["eigenvalue"].get<double>(), layer["seconds"].get<double>());
 }
 
 // The surface_stability probe on the barrel clamped at both ends and shortened by 3 mm per step:
@@ -678,13 +691,16 @@ TEST_F(SlowRunCli, SurfaceStabilityProbeFallsAsTheBarrelIsShortened) {
   double previous = 0.91262 * mu;
   for (const auto& row : probes.rows) {
     const double s = row[probes.column("side")];
-    std::printf("t = %g s: rho c^2 = %.4f mu, element layer %.4g Pa/m^2\n",
-                row[probes.column("time")], s / mu, row[probes.column("cell")]);
+    std::printf("t = %g s: rho c^2 = %.4f mu, element layer %.4g Pa/m^2, body column %.4g Pa/m^2\n",
+                row[probes.column("time")], s / mu, row[probes.column("cell")],
+                row[probes.column("cell.column")]);
     EXPECT_LT(s, previous);
     EXPECT_GT(s, 0.3 * mu);
     previous = s;
     // The element's own layer there stays stable (+2.3e6 Pa/m^2 measured at every step).
     EXPECT_GT(row[probes.column("cell")], 0.0);
+    // So is the body's own column of elements there (+3.6e6 to +4.1e6 Pa/m^2 measured).
+    EXPECT_GT(row[probes.column("cell.column")], 0.0);
   }
 }
 
