@@ -71,9 +71,10 @@ KernelStatus displacement_kernel(const ElementView& el, const MaterialContext& m
       return failure(KernelStatus::Kind::not_finite, q, J);
     }
     ws.S[q] = ws.result.S;
-    add_point(F, ws.result.S, tangent ? &ws.result.tangent : nullptr, grad, el.dv[q], ws);
+    add_point(F, ws.result.S, tangent ? &ws.result.tangent : nullptr, grad, el.dv[q], q, ws);
   }
   if (tangent) {
+    add_point_stiffness(ws, el.nqp);
     add_geometric(ws, el.nen);
     finish_tangent(ws);
   }
@@ -184,9 +185,9 @@ KernelStatus mixed_kernel(const ElementView& el, const MaterialContext& mat,
       C = ws.result.tangent;
       C.noalias() += (p * J) * (ci * ci.transpose());
       C.noalias() -= (2.0 * p * J) * materials::symmetric_product_voigt(C_inv);
-      add_point(F, S, &C, grad, el.dv[q], ws);
+      add_point(F, S, &C, grad, el.dv[q], q, ws);
     } else {
-      add_point(F, S, nullptr, grad, el.dv[q], ws);
+      add_point(F, S, nullptr, grad, el.dv[q], q, ws);
     }
   }
   // A = M^-1 K_JJ M^-1; condensed residual correction G^T (M^-1 R_theta + A R_pi).
@@ -196,6 +197,7 @@ KernelStatus mixed_kernel(const ElementView& el, const MaterialContext& mat,
   ws.rhs.noalias() += ws.A * ws.R_pi;
   ws.fe.noalias() += ws.G.transpose() * ws.rhs;
   if (tangent) {
+    add_point_stiffness(ws, el.nqp);
     add_geometric(ws, el.nen);
     ws.AG.noalias() = ws.A * ws.G;
     ws.ke.triangularView<Eigen::Upper>() += ws.G.transpose() * ws.AG;

@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "continuum/point_contributions.hpp"
+
 namespace isomuscle::continuum {
 
 // Offsets e nqp (fibres) and e nqp history_size (committed history) into element-major arrays.
@@ -59,8 +61,10 @@ ElementWorkspace::ElementWorkspace(int nen, int nqp, int pressure_size) {
   J_bar.assign(nqp, 1.0);
   p_bar.assign(nqp, 0.0);
   B.setZero(6, n);
-  CB.setZero(6, n);
-  SG.setZero(3, nen);
+  B_points.setZero(6 * kPointsPerProduct, n);
+  CB_points.setZero(6 * kPointsPerProduct, n);
+  grad_points.setZero(3 * kPointsPerProduct, nen);
+  SG_points.setZero(3 * kPointsPerProduct, nen);
   dJ.setZero(3, nen);
   H.setZero(nen, nen);
   const int m = pressure_size;

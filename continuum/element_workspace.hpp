@@ -75,8 +75,13 @@ class ElementWorkspace {
   std::vector<double> p_bar;
 
   // Scratch.
-  Eigen::Matrix<double, 6, Eigen::Dynamic> B, CB;
-  Eigen::Matrix<double, 3, Eigen::Dynamic> SG, dJ;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> B;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> dJ;
+  // A group of points' factors of the stiffness, stacked (rows 6s.. and 3s.. for slot s), so that
+  // K += B^T C B dV and H += dN/dX . S dN/dX dV over the group are one product each
+  // (point_contributions.hpp, kPointsPerProduct points).
+  Eigen::MatrixXd B_points, CB_points;     // 6 kPointsPerProduct x 3 n_en: B and C B dV
+  Eigen::MatrixXd grad_points, SG_points;  // 3 kPointsPerProduct x n_en: dN/dX and S dN/dX dV
   Eigen::MatrixXd H;
   Eigen::MatrixXd G;               // m x 3 n_en
   Eigen::MatrixXd K_JJ, X, A, AG;  // m x m, m x m, m x m, m x 3 n_en

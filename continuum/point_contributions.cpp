@@ -34,21 +34,46 @@ void fill_b(const Eigen::Matrix3d& F, const ConstMap3X& grad,
   }
 }
 
-// f_a += P dN_a/dX dV with P = F S; K += B^T C B dV; H += G^T S G dV (Bonet & Wood 2008, 8.3).
+namespace {
+
+// Upper triangles of K += B^T (C B dV) and H += dN/dX^T (S dN/dX dV) over the first `points`
+// points kept in the workspace.
+void add_kept_points(ElementWorkspace& ws, int points) {
+  const Eigen::Index b_rows = 6 * static_cast<Eigen::Index>(points);
+  const Eigen::Index g_rows = 3 * static_cast<Eigen::Index>(points);
+  ws.ke.triangularView<Eigen::Upper>() +=
+      ws.B_points.topRows(b_rows).transpose() * ws.CB_points.topRows(b_rows);
+  ws.H.triangularView<Eigen::Upper>() +=
+      ws.grad_points.topRows(g_rows).transpose() * ws.SG_points.topRows(g_rows);
+}
+
+}  // namespace
+
+// f_a += P dN_a/dX dV with P = F S; with C, point q's factors of K += B^T C B dV and
+// H += G^T S G dV (Bonet & Wood 2008, 8.3), added for every kPointsPerProduct points at once.
 void add_point(const Eigen::Matrix3d& F, const Eigen::Matrix3d& S, const materials::Matrix6d* C,
-               const ConstMap3X& grad, double dv, ElementWorkspace& ws) {
+               const ConstMap3X& grad, double dv, int q, ElementWorkspace& ws) {
   const int nen = static_cast<int>(grad.cols());
   Eigen::Map<Matrix3X> f3(ws.fe.data(), 3, nen);
   const Eigen::Matrix3d P = dv * (F * S);
   f3.noalias() += P * grad;
   if (C != nullptr) {
+    const int slot = q % kPointsPerProduct;
     fill_b(F, grad, ws.B);
-    // Only the upper triangles: K_e and H are symmetric (C and S are), finish_tangent mirrors.
-    ws.CB.noalias() = (dv * *C) * ws.B;
-    ws.ke.triangularView<Eigen::Upper>() += ws.B.transpose() * ws.CB;
-    ws.SG.noalias() = (dv * S) * grad;
-    ws.H.triangularView<Eigen::Upper>() += grad.transpose() * ws.SG;
+    ws.B_points.middleRows<6>(6 * slot) = ws.B;
+    ws.CB_points.middleRows<6>(6 * slot).noalias() = (dv * *C) * ws.B;
+    ws.grad_points.middleRows<3>(3 * slot) = grad;
+    ws.SG_points.middleRows<3>(3 * slot).noalias() = (dv * S) * grad;
+    if (slot == kPointsPerProduct - 1)
+      add_kept_points(ws, kPointsPerProduct);
   }
+}
+
+// The points after the last full group of kPointsPerProduct.
+void add_point_stiffness(ElementWorkspace& ws, int nqp) {
+  const int rest = nqp % kPointsPerProduct;
+  if (rest > 0)
+    add_kept_points(ws, rest);
 }
 
 // K(3a + i, 3b + i) += H(a, b), a <= b (Bonet & Wood 2008, 8.3: initial stress stiffness).

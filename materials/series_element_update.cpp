@@ -57,7 +57,81 @@ double series_element_residual(const SeriesElementProblem& p, FvBranch branch, d
   return sigma - p.s * fv.f;
 }
 
-// Bracketed Newton on g (see header); Δλs dimensionless, stresses Pa.
+namespace {
+
+// The converged (or best) point of the solve: Δλs, g, dg/dΔλs, σ_SEE and f_v there.
+struct SeriesElementPoint {
+  double x = 0.0, g = 0.0, dg = 0.0, sigma = 0.0;
+  ForceVelocity fv;
+  FvBranch branch = FvBranch::shortening;
+};
+
+SeriesElementSolution solution_at(const SeriesElementProblem& p, const SeriesElementPoint& at,
+                                  int iterations, bool resolved) {
+  SeriesElementSolution sol;
+  sol.iterations = iterations;
+  sol.tolerance = kTolerance * (p.beta + p.s + std::abs(at.sigma));
+  sol.delta_lambda_s = at.x;
+  sol.sigma_see = at.sigma;
+  sol.residual = at.g;
+  sol.branch = at.branch;
+  sol.fv = at.fv;
+  sol.dg_ddls = at.dg;
+  sol.dsigma_ddls = at.dg - p.s * p.k * at.fv.df_ddlm;
+  sol.converged = (std::abs(at.g) <= sol.tolerance || resolved) &&
+                  p.alpha * (p.lambda_s_prev - 1.0 + at.x) < kMaxExponent;
+  return sol;
+}
+
+// g, dg/dΔλs, σ_SEE and f_v at Δλs = x on `branch` (3.24–3.25 with D.8).
+SeriesElementPoint evaluate_at(const SeriesElementProblem& p, FvBranch branch, double x) {
+  SeriesElementPoint at;
+  double dsigma = 0.0;
+  see_stress(p, x, at.sigma, dsigma);
+  at.fv = force_velocity(branch, p.alpha1 - p.k * x, p.r, p.k_c, p.k_e, p.d);
+  at.g = at.sigma - p.s * at.fv.f;
+  at.dg = dsigma + p.s * p.k * at.fv.df_ddlm;
+  at.x = x;
+  at.branch = branch;
+  return at;
+}
+
+// At most this many Newton steps from the initial guess before the bracketed solve takes over.
+constexpr int kGuessIterations = 8;
+
+// Plain Newton from the caller's guess (the previous substep's Δλs, which is close): each iterate
+// on its own force–velocity branch, the one of its Δλm (g is continuous across Δλm = 0 and
+// strictly increasing, so a root found this way is the unique root of the implicit problem). It
+// needs no bracket, which costs a log1p and an exp, more than the one or two Newton steps a good
+// guess needs. Gives up (false) at the first step that leaves the branch's domain or does not
+// reduce |g|; the bracketed solve then starts from the guess again.
+bool newton_from_guess(const SeriesElementProblem& p, SeriesElementPoint& at, int& iterations) {
+  double x = p.initial_guess;
+  double last_g = kInf;
+  for (int it = 0; it < kGuessIterations; ++it) {
+    const FvBranch branch = p.fixed_branch             ? p.branch
+                            : p.alpha1 - p.k * x > 0.0 ? FvBranch::lengthening
+                                                       : FvBranch::shortening;
+    const Domain dom = branch_domain(p, branch);
+    if (!(x > dom.lo && x < dom.hi) || !(p.alpha * (p.lambda_s_prev - 1.0 + x) < kMaxExponent))
+      return false;
+    ++iterations;
+    at = evaluate_at(p, branch, x);
+    if (!std::isfinite(at.g) || !std::isfinite(at.dg) || !(std::abs(at.g) < std::abs(last_g)))
+      return false;
+    if (std::abs(at.g) <= kTarget * (p.beta + p.s + std::abs(at.sigma)))
+      return true;
+    if (!(at.dg > 0.0))
+      return false;
+    last_g = at.g;
+    x -= at.g / at.dg;
+  }
+  return false;
+}
+
+}  // namespace
+
+// Newton from the guess, else bracketed Newton on g (see header); Δλs dimensionless, stresses Pa.
 SeriesElementSolution solve_series_element(const SeriesElementProblem& p) {
   SeriesElementSolution sol;
   const bool valid =
@@ -68,6 +142,13 @@ SeriesElementSolution solve_series_element(const SeriesElementProblem& p) {
       std::isfinite(p.d) && p.d >= 1.0 && p.alpha * (p.lambda_s_prev - 1.0) < kMaxExponent;
   if (!valid)
     return sol;
+
+  int guess_iterations = 0;
+  if (std::isfinite(p.initial_guess)) {
+    SeriesElementPoint at;
+    if (newton_from_guess(p, at, guess_iterations))
+      return solution_at(p, at, guess_iterations, false);
+  }
 
   // Δλs_iso: CE holds its length (f_v = 1 in both formulas); Δλs_s: σ_SEE = s.
   const double dls_iso = p.alpha1 / p.k;
@@ -83,16 +164,6 @@ SeriesElementSolution solve_series_element(const SeriesElementProblem& p) {
   const Domain dom = branch_domain(p, branch);
   lo = std::max(lo, dom.lo);
   hi = std::min(hi, dom.hi);
-
-  // Residual and slope on the chosen branch. Tolerances scale with the stresses in the equation:
-  // β + s + |σ_SEE| (σ_SEE exceeds s only when f_v > 1).
-  const auto eval = [&](double x, double& g, double& dg, ForceVelocity& fv, double& sigma) {
-    double dsigma = 0.0;
-    see_stress(p, x, sigma, dsigma);
-    fv = force_velocity(branch, p.alpha1 - p.k * x, p.r, p.k_c, p.k_e, p.d);
-    g = sigma - p.s * fv.f;
-    dg = dsigma + p.s * p.k * fv.df_ddlm;
-  };
 
   // g at the bracket ends without another exp(): g(Δλs_iso) = σ_iso - s (f_v = 1), g(Δλs_s) =
   // s (1 - f_v), -+inf at a pole.
@@ -117,23 +188,26 @@ SeriesElementSolution solve_series_element(const SeriesElementProblem& p) {
   if (std::isfinite(p.initial_guess) && p.initial_guess > lo && p.initial_guess < hi)
     x = p.initial_guess;
 
-  double best_x = x, best_g = kInf;
-  double g = 0.0, dg = 0.0, sigma = 0.0;
-  ForceVelocity fv;
+  // Tolerances scale with the stresses in the equation: β + s + |σ_SEE| (σ_SEE exceeds s only
+  // when f_v > 1).
+  SeriesElementPoint best, at;
+  best.g = kInf;
+  bool evaluated = false;  // best holds an evaluated point
   double step_before = hi - lo;
   bool resolved = false;
+  int iterations = guess_iterations;
   for (int it = 0; it < kMaxIterations; ++it) {
-    sol.iterations = it + 1;
-    eval(x, g, dg, fv, sigma);
-    if (std::isnan(g))
+    ++iterations;
+    at = evaluate_at(p, branch, x);
+    if (std::isnan(at.g))
       break;
-    if (std::abs(g) < std::abs(best_g)) {
-      best_g = g;
-      best_x = x;
+    if (std::abs(at.g) < std::abs(best.g)) {
+      best = at;
+      evaluated = true;
     }
-    if (std::abs(g) <= kTarget * (p.beta + p.s + std::abs(sigma)))
+    if (std::abs(at.g) <= kTarget * (p.beta + p.s + std::abs(at.sigma)))
       break;
-    if (g < 0.0) {
+    if (at.g < 0.0) {
       lo = x;
     } else {
       hi = x;
@@ -148,7 +222,8 @@ SeriesElementSolution solve_series_element(const SeriesElementProblem& p) {
       see_stress(p, lo, s_lo, unused);
       see_stress(p, hi, s_hi, unused);
       resolved = std::abs(s_hi - s_lo) <= kTolerance * (p.beta + p.s + std::abs(s_hi));
-      best_x = x;  // x is one of the two ends
+      best = at;  // x is one of the two ends
+      evaluated = true;
       break;
     }
     // Newton if it stays inside the bracket and the last steps shrank fast enough, else bisect.
@@ -156,9 +231,9 @@ SeriesElementSolution solve_series_element(const SeriesElementProblem& p) {
     // crossed and the bracket collapses onto it.
     const double min_step = 4.0 * std::numeric_limits<double>::epsilon() *
                             std::max(std::abs(x), std::numeric_limits<double>::min());
-    double newton = x - g / dg;
+    double newton = x - at.g / at.dg;
     if (std::abs(newton - x) < min_step)
-      newton = x - std::copysign(min_step, g);
+      newton = x - std::copysign(min_step, at.g);
     const double step = std::abs(newton - x);
     if (std::isfinite(newton) && newton > lo && newton < hi && step <= 0.5 * step_before) {
       step_before = step;
@@ -168,20 +243,9 @@ SeriesElementSolution solve_series_element(const SeriesElementProblem& p) {
       x = 0.5 * (lo + hi);
     }
   }
-  eval(best_x, g, dg, fv, sigma);
-  if (!std::isfinite(g) || !std::isfinite(dg))
+  if (!evaluated || !std::isfinite(best.g) || !std::isfinite(best.dg))
     return sol;
-  sol.tolerance = kTolerance * (p.beta + p.s + std::abs(sigma));
-  sol.delta_lambda_s = best_x;
-  sol.sigma_see = sigma;
-  sol.residual = g;
-  sol.branch = branch;
-  sol.fv = fv;
-  sol.dg_ddls = dg;
-  sol.dsigma_ddls = dg - p.s * p.k * fv.df_ddlm;
-  sol.converged = (std::abs(g) <= sol.tolerance || resolved) &&
-                  p.alpha * (p.lambda_s_prev - 1.0 + best_x) < kMaxExponent;
-  return sol;
+  return solution_at(p, best, iterations, resolved);
 }
 
 }  // namespace isomuscle::materials

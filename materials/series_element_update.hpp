@@ -30,8 +30,9 @@ struct SeriesElementProblem {
   // it from the previous step's Δλm).
   bool fixed_branch = false;
   FvBranch branch = FvBranch::shortening;
-  // A starting point for Newton (e.g. the previous substep's Δλs); used when it lies inside the
-  // bracket, NaN for none. It changes the iterations, not the root (unique on the bracket).
+  // A starting point for Newton (e.g. the previous substep's Δλs), NaN for none: plain Newton
+  // from it first, then the bracketed solve from it when it lies inside the bracket. It changes
+  // the iterations, not the root (unique on the bracket).
   double initial_guess = std::numeric_limits<double>::quiet_NaN();
 };
 
@@ -52,7 +53,10 @@ struct SeriesElementSolution {
 double series_element_residual(const SeriesElementProblem& p, FvBranch branch,
                                double delta_lambda_s);
 
-// Safeguarded Newton (bracketed, bisection fallback) for g(Δλs) = 0. The bracket is closed-form:
+// g(Δλs) = 0. With an initial guess, plain Newton from it first, each iterate on the branch of its
+// own Δλm (at most 8 steps, each one reducing |g|, within the branch's domain); that is all a
+// close guess needs, and it skips the bracket's log1p and exp. Otherwise, or when that fails:
+// safeguarded Newton (bracketed, bisection fallback). The bracket is closed-form:
 // between Δλs_iso = α1/k (Δλm = 0, f_v = 1) and Δλs_s (σ_SEE = s), since f_v <= 1 for Δλm <= 0
 // and f_v >= 1 for Δλm >= 0. Converged when |g| <= tolerance, or when the bracket has shrunk to a
 // few doubles with σ_SEE equal at both ends to tolerance (g then jumps across the root because f_v
