@@ -42,23 +42,6 @@ void see_stress(const SeriesElementProblem& p, double dls, double& sigma, double
   dsigma = p.alpha * p.beta * e;
 }
 
-}  // namespace
-
-// g(Δλs) = σ_SEE - s f_v(α1 - k Δλs) (3.24–3.25 with D.8), Pa.
-double series_element_residual(const SeriesElementProblem& p, FvBranch branch, double dls) {
-  const Domain dom = branch_domain(p, branch);
-  if (dls <= dom.lo)
-    return -kInf;
-  if (dls >= dom.hi)
-    return kInf;
-  double sigma = 0.0, dsigma = 0.0;
-  see_stress(p, dls, sigma, dsigma);
-  const ForceVelocity fv = force_velocity(branch, p.alpha1 - p.k * dls, p.r, p.k_c, p.k_e, p.d);
-  return sigma - p.s * fv.f;
-}
-
-namespace {
-
 // The converged (or best) point of the solve: Δλs, g, dg/dΔλs, σ_SEE and f_v there.
 struct SeriesElementPoint {
   double x = 0.0, g = 0.0, dg = 0.0, sigma = 0.0;
@@ -95,6 +78,20 @@ SeriesElementPoint evaluate_at(const SeriesElementProblem& p, FvBranch branch, d
   at.branch = branch;
   return at;
 }
+
+}  // namespace
+
+// g(Δλs) = σ_SEE - s f_v(α1 - k Δλs) (3.24–3.25 with D.8), Pa.
+double series_element_residual(const SeriesElementProblem& p, FvBranch branch, double dls) {
+  const Domain dom = branch_domain(p, branch);
+  if (dls <= dom.lo)
+    return -kInf;
+  if (dls >= dom.hi)
+    return kInf;
+  return evaluate_at(p, branch, dls).g;
+}
+
+namespace {
 
 // At most this many Newton steps from the initial guess before the bracketed solve takes over.
 constexpr int kGuessIterations = 8;
@@ -191,8 +188,7 @@ SeriesElementSolution solve_series_element(const SeriesElementProblem& p) {
   // Tolerances scale with the stresses in the equation: β + s + |σ_SEE| (σ_SEE exceeds s only
   // when f_v > 1).
   SeriesElementPoint best, at;
-  best.g = kInf;
-  bool evaluated = false;  // best holds an evaluated point
+  best.g = kInf;  // until a point is evaluated
   double step_before = hi - lo;
   bool resolved = false;
   int iterations = guess_iterations;
@@ -201,10 +197,8 @@ SeriesElementSolution solve_series_element(const SeriesElementProblem& p) {
     at = evaluate_at(p, branch, x);
     if (std::isnan(at.g))
       break;
-    if (std::abs(at.g) < std::abs(best.g)) {
+    if (std::abs(at.g) < std::abs(best.g))
       best = at;
-      evaluated = true;
-    }
     if (std::abs(at.g) <= kTarget * (p.beta + p.s + std::abs(at.sigma)))
       break;
     if (at.g < 0.0) {
@@ -223,7 +217,6 @@ SeriesElementSolution solve_series_element(const SeriesElementProblem& p) {
       see_stress(p, hi, s_hi, unused);
       resolved = std::abs(s_hi - s_lo) <= kTolerance * (p.beta + p.s + std::abs(s_hi));
       best = at;  // x is one of the two ends
-      evaluated = true;
       break;
     }
     // Newton if it stays inside the bracket and the last steps shrank fast enough, else bisect.
@@ -243,7 +236,7 @@ SeriesElementSolution solve_series_element(const SeriesElementProblem& p) {
       x = 0.5 * (lo + hi);
     }
   }
-  if (!evaluated || !std::isfinite(best.g) || !std::isfinite(best.dg))
+  if (!std::isfinite(best.g) || !std::isfinite(best.dg))
     return sol;
   return solution_at(p, best, iterations, resolved);
 }
