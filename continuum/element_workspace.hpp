@@ -33,6 +33,9 @@ struct MaterialContext {
   double dt = 0.0;                            // s
   const double* history_committed = nullptr;  // nqp x history_size (nullptr when 0)
   double* history_trial = nullptr;            // nqp x history_size (nullptr when 0)
+  // The trial history holds what the law wrote at this element's current F in the pass before
+  // (materials::PointInput::trial_is_current).
+  bool trial_is_current = false;
 };
 
 // The context of element e (nqp points per element): fibres and committed history are arrays over

@@ -101,6 +101,7 @@ void bind_history(const MaterialContext& mat, int q, int hs, materials::PointInp
     in.history = std::span<const double>(mat.history_committed + off, hs);
     out.history = std::span<double>(mat.history_trial + off, hs);
   }
+  in.trial_is_current = mat.trial_is_current;
 }
 
 }  // namespace isomuscle::continuum

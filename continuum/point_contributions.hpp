@@ -48,7 +48,8 @@ void add_geometric(ElementWorkspace& ws, int nen);
 // The lower triangle of K_e from the upper one (K_e is symmetric).
 void finish_tangent(ElementWorkspace& ws);
 
-// Points the material input/output at point q's committed and trial history (history_size hs).
+// Points the material input/output at point q's committed and trial history (history_size hs),
+// and passes on whether the trial history is current.
 void bind_history(const MaterialContext& mat, int q, int hs, materials::PointInput& in,
                   materials::PointResult& out);
 

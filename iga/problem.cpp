@@ -136,7 +136,7 @@ std::string Problem::describe_failure(int e, const KernelStatus& s) const {
 // Element loop: kernel per element (into the thread's workspace), scatter by colour (DESIGN 2, 5).
 solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool want_tangent,
                                            double* tangent_values, bool use_base,
-                                           const Eigen::VectorXd* increment,
+                                           bool trial_is_current, const Eigen::VectorXd* increment,
                                            Eigen::VectorXd* K_increment) {
   if (K_increment != nullptr) {
     K_increment->setZero(dofs_.num_dofs());
@@ -153,9 +153,10 @@ solver::EvaluationStatus Problem::assemble(const Eigen::VectorXd& u_full, bool w
     for (int a = 0; a < static_cast<int>(cps.size()); ++a) {
       ws.ue.col(a) = u_full.segment<3>(3 * dofs_.node(cps[a]));
     }
-    const MaterialContext ctx = continuum::element_material_context(
+    MaterialContext ctx = continuum::element_material_context(
         law_, fibres_, e, nqp, time_, dt_, history_committed_,
         history_trial_.data() + static_cast<std::size_t>(e) * nqp * hs);
+    ctx.trial_is_current = trial_is_current;
     const ElementView view = element_view(space_, e);
     MixedBase base_view;
     const KernelStatus ks =
@@ -202,6 +203,9 @@ solver::EvaluationStatus Problem::evaluate(const Eigen::VectorXd& u, Eigen::Vect
     throw std::invalid_argument("iga::Problem::evaluate: vector of size " +
                                 std::to_string(u.size()) + ", expected " + std::to_string(size()));
   }
+  // Newton's tangent pass comes at the state its line search has just evaluated: the law's update
+  // is then already in the trial history.
+  const bool trial_is_current = trial_is_at(u);
   trial_valid_ = false;
   constraints_.expand(u, time_, u_full_);
   double* values = nullptr;
@@ -213,7 +217,8 @@ solver::EvaluationStatus Problem::evaluate(const Eigen::VectorXd& u, Eigen::Vect
     }
     values = tangent->valuePtr();
   }
-  const solver::EvaluationStatus status = assemble(u_full_, tangent != nullptr, values, true);
+  const solver::EvaluationStatus status =
+      assemble(u_full_, tangent != nullptr, values, true, trial_is_current);
   if (!status.ok) {
     return status;
   }
@@ -232,8 +237,12 @@ solver::EvaluationStatus Problem::evaluate(const Eigen::VectorXd& u, Eigen::Vect
 
 // Makes the trial history at u the committed one (re-evaluating when the last evaluation was
 // elsewhere), and keeps the history it replaces for state_at().
+bool Problem::trial_is_at(const Eigen::VectorXd& u) const {
+  return trial_valid_ && last_time_ == time_ && last_u_.size() == u.size() && last_u_ == u;
+}
+
 void Problem::commit_step(const Eigen::VectorXd& u) {
-  if (!(trial_valid_ && last_time_ == time_ && last_u_.size() == u.size() && last_u_ == u)) {
+  if (!trial_is_at(u)) {
     Eigen::VectorXd r;
     const solver::EvaluationStatus status = evaluate(u, r, nullptr);
     if (!status.ok) {
@@ -272,7 +281,7 @@ solver::EvaluationStatus Problem::predict(Eigen::VectorXd& u) {
   // A tangent pass at the committed state with the exact projection: Newton's first iterate is
   // linearised about its base (after a failure, about the committed one, anchored).
   const solver::EvaluationStatus status =
-      assemble(old_full, true, matrix.valuePtr(), false, &increment, &K_increment);
+      assemble(old_full, true, matrix.valuePtr(), false, false, &increment, &K_increment);
   if (!status.ok) {
     return solver::EvaluationStatus::failure("predictor: " + status.message);
   }
@@ -307,7 +316,7 @@ solver::EvaluationStatus Problem::internal_force(const Eigen::VectorXd& u, Eigen
   }
   trial_valid_ = false;
   constraints_.expand(u, time_, u_full_);
-  const solver::EvaluationStatus status = assemble(u_full_, false, nullptr, false);
+  const solver::EvaluationStatus status = assemble(u_full_, false, nullptr, false, false);
   if (status.ok) {
     f_int = f_int_;
     last_u_ = u;

@@ -190,13 +190,17 @@ class Problem : public solver::NonlinearProblem {
   // values): what the step that reached the committed state evaluated the law from.
   std::span<const double> history_before_step(int e, int q) const;
   // use_base: mixed formulation, update p~, J~ from the current base (when there is one) instead
-  // of projecting exactly (element_kernels.hpp, continuum/mixed_bases.hpp). With increment
+  // of projecting exactly (element_kernels.hpp, continuum/mixed_bases.hpp). trial_is_current:
+  // the trial history is that of the last evaluation, at this same u_full (trial_is_at), so the
+  // law need not update it again (materials::PointInput::trial_is_current). With increment
   // (full vector), also K_increment = K_all increment (all DOFs, element by element).
   solver::EvaluationStatus assemble(const Eigen::VectorXd& u_full, bool want_tangent,
-                                    double* tangent_values, bool use_base,
+                                    double* tangent_values, bool use_base, bool trial_is_current,
                                     const Eigen::VectorXd* increment = nullptr,
                                     Eigen::VectorXd* K_increment = nullptr);
   std::string describe_failure(int e, const KernelStatus& s) const;
+  // Whether the trial history is that of a successful evaluation at free values u in this step.
+  bool trial_is_at(const Eigen::VectorXd& u) const;
   // Runs the element kernel (with the tangent when asked) at the committed state with the pre-step
   // history into a workspace of its own; throws std::runtime_error when the kernel fails.
   void committed_element_pass(int e, ElementWorkspace& ws, bool want_tangent = false) const;

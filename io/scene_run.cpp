@@ -533,7 +533,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     s.extra["newton"] = Json{{"solves", ns.solves},
                              {"converged_solves", ns.converged_solves},
                              {"residual_evaluations", ns.residual_evaluations},
-                             {"tangent_evaluations", ns.tangent_evaluations}};
+                             {"tangent_evaluations", ns.tangent_evaluations},
+                             {"residual_seconds", ns.residual_seconds},
+                             {"tangent_seconds", ns.tangent_seconds}};
   }
   s.extra["time"] = Json{{"end", scene.time.end}, {"reached", result.time_reached}};
   const auto optional_time = [](const std::optional<double>& t) {

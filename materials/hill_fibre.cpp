@@ -20,6 +20,8 @@ void HillFibre::initial_history(std::span<double> history) const {
   history[kLambdaF] = 1.0;
   history[kSeeRate] = 0.0;
   history[kFibreRate] = 0.0;
+  history[kSeeStress] = 0.0;
+  history[kSeeStiffness] = 0.0;
 }
 
 // Thesis 3.40–3.41 (5.37 with A = 4); Pa.
@@ -95,7 +97,7 @@ int HillFibre::substep_count(std::span<const double> history, double time, doubl
 
 // One backward-Euler substep of 3.22–3.39 (Appendix D) with forward sensitivities; stresses Pa.
 bool HillFibre::substep(double lambda_j, double w, double lf_prev, double time_j, double h,
-                        bool tangent, SubstepState& st, double& sigma_see, double& dsigma_dls,
+                        SubstepState& st, double& sigma_see, double& dsigma_dls,
                         int& iterations) const {
   const double k = p_.k;
   // s = σ0 f_t f_λ (3.25); f_λ at the substep's stretch unless explicit_lag.
@@ -151,16 +153,14 @@ bool HillFibre::substep(double lambda_j, double w, double lf_prev, double time_j
     dls = sol.delta_lambda_s;
     sigma_see = sol.sigma_see;
     dsigma_dls = sol.dsigma_ddls;
-    if (tangent) {
-      // Implicit function theorem on g(Δλs; λ̄f) = σ_SEE(^tλs + Δλs) - s(λ_j) f_v(α1 - kΔλs;
-      // k_c(λ_j)) = 0, where λ_j, ^tλs and ^tλm (the previous substep's) depend on λ̄f:
-      // dΔλs/dλ̄f = -(g_λ w + g_λs dλs/dλ̄f + g_λm dλm/dλ̄f) / g_Δλs.
-      const double g_lambda =
-          -ds * sol.fv.f - s * sol.fv.df_ddlm * (1.0 + k) - s * sol.fv.df_dkc * dk_c;
-      const double g_ls = sol.dsigma_ddls + s * k * sol.fv.df_ddlm;
-      const double g_lm = s * sol.fv.df_ddlm;
-      ddls = -(g_lambda * w + g_ls * st.dls_dlf + g_lm * st.dlm_dlf) / sol.dg_ddls;
-    }
+    // Implicit function theorem on g(Δλs; λ̄f) = σ_SEE(^tλs + Δλs) - s(λ_j) f_v(α1 - kΔλs;
+    // k_c(λ_j)) = 0, where λ_j, ^tλs and ^tλm (the previous substep's) depend on λ̄f:
+    // dΔλs/dλ̄f = -(g_λ w + g_λs dλs/dλ̄f + g_λm dλm/dλ̄f) / g_Δλs.
+    const double g_lambda =
+        -ds * sol.fv.f - s * sol.fv.df_ddlm * (1.0 + k) - s * sol.fv.df_dkc * dk_c;
+    const double g_ls = sol.dsigma_ddls + s * k * sol.fv.df_ddlm;
+    const double g_lm = s * sol.fv.df_ddlm;
+    ddls = -(g_lambda * w + g_ls * st.dls_dlf + g_lm * st.dlm_dlf) / sol.dg_ddls;
   }
   const double dlm = alpha1 - k * dls;  // D.8
   st.dls_guess = dls;                   // the next substep starts from this one's increment
@@ -174,8 +174,7 @@ bool HillFibre::substep(double lambda_j, double w, double lf_prev, double time_j
 
 // Thesis 3.22–3.39 with the readings listed in the header; stresses Pa, stretches dimensionless.
 FibreResponse HillFibre::update(double lambda_f, double time, double dt,
-                                std::span<const double> history, std::span<double> trial,
-                                bool tangent) const {
+                                std::span<const double> history, std::span<double> trial) const {
   FibreResponse out;
   const double ls0 = history[kLambdaS], lm0 = history[kLambdaM];
   const double dlm0 = history[kDeltaLambdaM], lf0 = history[kLambdaF];
@@ -197,17 +196,14 @@ FibreResponse HillFibre::update(double lambda_f, double time, double dt,
     const double lambda_j = j == m ? lambda_f : lf0 + w * (lambda_f - lf0);
     const double time_j = j == m ? time : time - dt + w * dt;
     const double lf_prev = j == 1 ? lf0 : lf0 + (w - 1.0 / m) * (lambda_f - lf0);
-    if (!substep(lambda_j, w, lf_prev, time_j, dt / m, tangent, st, sigma_see, dsigma_dls,
-                 out.iterations))
+    if (!substep(lambda_j, w, lf_prev, time_j, dt / m, st, sigma_see, dsigma_dls, out.iterations))
       return out;
     dlm_sum += st.dlm;  // summed, not st.lm - ^tλm, to keep a tiny Δλm's sign and digits
   }
   out.sigma_see = sigma_see;
-  if (tangent) {
-    // Thesis 5.54 (frozen CE over the whole step): U''_SE = αβ (1 + k)/k exp(α(λs - 1)).
-    out.dsigma_see =
-        p_.frozen_ce_tangent ? dsigma_dls * (1.0 + p_.k) / p_.k : dsigma_dls * st.dls_dlf;
-  }
+  // Thesis 5.54 (frozen CE over the whole step): U''_SE = αβ (1 + k)/k exp(α(λs - 1)).
+  out.dsigma_see =
+      p_.frozen_ce_tangent ? dsigma_dls * (1.0 + p_.k) / p_.k : dsigma_dls * st.dls_dlf;
   trial[kLambdaS] = st.ls;
   trial[kLambdaM] = st.lm;
   trial[kDeltaLambdaM] = dlm_sum;
@@ -216,11 +212,23 @@ FibreResponse HillFibre::update(double lambda_f, double time, double dt,
     trial[kSeeRate] = (st.ls - ls0) / dt;
     trial[kFibreRate] = (lambda_f - lf0) / dt;
   }
+  trial[kSeeStress] = out.sigma_see;
+  trial[kSeeStiffness] = out.dsigma_see;
   out.substeps = m;
   out.ok = std::isfinite(out.sigma_see) && std::isfinite(out.dsigma_see) &&
            std::isfinite(trial[kLambdaM]);
   if (!out.ok)
     std::copy(history.begin(), history.end(), trial.begin());
+  return out;
+}
+
+// The response update() stored with the trial history; stresses Pa.
+FibreResponse HillFibre::response_of_trial(double lambda_f, std::span<const double> trial) const {
+  FibreResponse out;
+  out.sigma_pe = parallel_stress(lambda_f, &out.dsigma_pe);
+  out.sigma_see = trial[kSeeStress];
+  out.dsigma_see = trial[kSeeStiffness];
+  out.ok = std::isfinite(out.sigma_see) && std::isfinite(out.dsigma_see);
   return out;
 }
 

@@ -13,6 +13,12 @@
 //                      stores σ0 f_λ(λ̄f) in hsv(7) instead)
 //   [4] see_rate       Δλs/Δt of the last step, 1/s (the substep estimate reads it)
 //   [5] fibre_rate     Δλ̄f/Δt of the last step, 1/s (ditto)
+//   [6] see_stress     σ_SEE at the end of the last step, Pa, as update() returned it
+//   [7] see_stiffness  dσ_SEE/dλ̄f of the last step, Pa (consistent or frozen-CE, as update()
+//                      returned it); with [6] the response at the trial state, so that a second
+//                      evaluation at the same state (Newton's tangent pass at the state its line
+//                      search just evaluated) reads it instead of solving the step again
+//                      (response_of_trial)
 //
 // Readings of the thesis chosen here (SPEC §2):
 // * f_λ is evaluated at the current stretch λ̄f^(t+Δt) (implicit: the stress is then a function
@@ -74,7 +80,9 @@ enum HillHistoryIndex : int {
   kLambdaF = 3,
   kSeeRate = 4,
   kFibreRate = 5,
-  kHillHistorySize = 6,
+  kSeeStress = 6,
+  kSeeStiffness = 7,
+  kHillHistorySize = 8,
 };
 
 // How the adaptive substep count is chosen (header).
@@ -127,9 +135,14 @@ class HillFibre {
 
   // One step to time `time` (= t + Δt) with step dt and stretch lambda_f = λ̄f^(t+Δt). Reads the
   // committed history, writes the trial history (both kHillHistorySize long, may not alias).
-  // dsigma_* are computed only when tangent is true.
+  // The derivatives dsigma_* are always computed: they are stored in the trial history ([7]), and
+  // their forward sensitivities cost a division per substep against a local solve.
   FibreResponse update(double lambda_f, double time, double dt, std::span<const double> history,
-                       std::span<double> trial, bool tangent) const;
+                       std::span<double> trial) const;
+  // The response that update() returned when it wrote `trial` at the stretch lambda_f: σ_SEE and
+  // dσ_SEE/dλ̄f from the trial history, σ_PE and its slope from lambda_f; the same numbers, with
+  // no local solve.
+  FibreResponse response_of_trial(double lambda_f, std::span<const double> trial) const;
   // The number of substeps m that update() takes from a committed history to time `time` with
   // step dt (see the header); it does not depend on the trial λ̄f.
   int substep_count(std::span<const double> history, double time, double dt) const;
@@ -143,8 +156,8 @@ class HillFibre {
   };
   // One backward-Euler substep of length h to λ̄f = lambda_j (= lf0 + w (λ̄f - lf0)) at time_j;
   // advances st, writes σ_SEE and dσ_SEE/dλs at its end. False when the local solve failed.
-  bool substep(double lambda_j, double w, double lf_prev, double time_j, double h, bool tangent,
-               SubstepState& st, double& sigma_see, double& dsigma_dls, int& iterations) const;
+  bool substep(double lambda_j, double w, double lf_prev, double time_j, double h, SubstepState& st,
+               double& sigma_see, double& dsigma_dls, int& iterations) const;
 
   HillFibreParameters p_;
 };

@@ -36,7 +36,8 @@ void HillMuscle::initial_history(std::span<double> history) const {
 }
 
 std::vector<std::string> HillMuscle::history_names() const {
-  return {"lambda_s", "lambda_m", "delta_lambda_m", "lambda_f", "see_rate", "fibre_rate"};
+  return {"lambda_s", "lambda_m",   "delta_lambda_m", "lambda_f",
+          "see_rate", "fibre_rate", "see_stress",     "see_stiffness"};
 }
 
 std::vector<std::string> HillMuscle::cauchy_part_names() const {
@@ -72,8 +73,9 @@ PointStatus HillMuscle::evaluate_impl(const PointInput& in, PointResult& out, bo
   const double I4_bar = kin.J_m23 * fibre_invariant(kin, N);
   const double lambda_f = std::sqrt(I4_bar);
 
-  const FibreResponse fib =
-      fibre_.update(lambda_f, in.time, in.dt, in.history, out.history, compute_tangent);
+  const FibreResponse fib = in.trial_is_current
+                                ? fibre_.response_of_trial(lambda_f, out.history)
+                                : fibre_.update(lambda_f, in.time, in.dt, in.history, out.history);
   if (!fib.ok) {
     out.S.setZero();
     return PointStatus::local_solve_failed;

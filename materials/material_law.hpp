@@ -27,6 +27,11 @@ struct PointInput {
   double time = 0.0;                                 // t + dt, s
   double dt = 0.0;                                   // step size, s
   std::span<const double> history;                   // committed at the end of the last step
+  // true: PointResult::history already holds the trial history that this law wrote, with status
+  // ok, for this same input (e.g. Newton's tangent pass at the state its line search has just
+  // evaluated). A law with a local update may take its state from it instead of updating again,
+  // and leaves it as it is; S and the tangent are the same numbers as without.
+  bool trial_is_current = false;
 };
 
 enum class PointStatus {

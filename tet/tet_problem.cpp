@@ -197,7 +197,7 @@ KernelStatus TetProblem::element_kernel(int e, const MaterialContext& ctx, bool 
 
 // Element loop: kernel per element into the thread's workspace, scatter by colour (DESIGN 2, 5).
 solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, bool want_tangent,
-                                              double* values, bool use_base,
+                                              double* values, bool use_base, bool trial_is_current,
                                               const Eigen::VectorXd* increment,
                                               Eigen::VectorXd* K_increment) {
   f_int_.setZero(u_full.size());
@@ -215,9 +215,10 @@ solver::EvaluationStatus TetProblem::assemble(const Eigen::VectorXd& u_full, boo
     for (int a = 0; a < nen; ++a) {
       ws.ue.col(a) = u_full.segment<3>(3 * el[a]);
     }
-    const MaterialContext ctx = continuum::element_material_context(
+    MaterialContext ctx = continuum::element_material_context(
         law_, fibres_, e, nqp, time_, dt_, history_committed_,
         history_trial_.data() + static_cast<std::size_t>(e) * nqp * hs);
+    ctx.trial_is_current = trial_is_current;
     continuum::MixedBase base_view;
     const KernelStatus ks = element_kernel(
         e, ctx, want_tangent, ws, mixed ? bases_.element_base(pass, e, ws, base_view) : nullptr);
@@ -259,6 +260,8 @@ solver::EvaluationStatus TetProblem::evaluate(const Eigen::VectorXd& u, Eigen::V
     throw std::invalid_argument("TetProblem::evaluate: vector of size " + std::to_string(u.size()) +
                                 ", expected " + std::to_string(size()));
   }
+  // Newton's tangent pass comes at the state its line search has just evaluated (iga::Problem).
+  const bool trial_is_current = trial_is_at(u);
   trial_valid_ = false;
   u_full_ = full_displacement(u);
   double* values = nullptr;
@@ -270,7 +273,8 @@ solver::EvaluationStatus TetProblem::evaluate(const Eigen::VectorXd& u, Eigen::V
     }
     values = tangent->valuePtr();
   }
-  const solver::EvaluationStatus status = assemble(u_full_, tangent != nullptr, values, true);
+  const solver::EvaluationStatus status =
+      assemble(u_full_, tangent != nullptr, values, true, trial_is_current);
   if (!status.ok) {
     return status;
   }
@@ -292,8 +296,12 @@ solver::EvaluationStatus TetProblem::evaluate(const Eigen::VectorXd& u, Eigen::V
 
 // Makes the trial history at u the committed one (re-evaluating when the last evaluation was
 // elsewhere).
+bool TetProblem::trial_is_at(const Eigen::VectorXd& u) const {
+  return trial_valid_ && last_u_.size() == u.size() && last_u_ == u;
+}
+
 void TetProblem::commit_step(const Eigen::VectorXd& u) {
-  if (!(trial_valid_ && last_u_.size() == u.size() && last_u_ == u)) {
+  if (!trial_is_at(u)) {
     Eigen::VectorXd r;
     const solver::EvaluationStatus status = evaluate(u, r, nullptr);
     if (!status.ok) {
@@ -332,7 +340,7 @@ solver::EvaluationStatus TetProblem::predict(Eigen::VectorXd& u) {
   // A tangent pass at the committed state with the exact projection: Newton's first iterate is
   // linearised about its base (after a failure, about the committed one, anchored).
   const solver::EvaluationStatus status =
-      assemble(old_full, true, matrix.valuePtr(), false, &increment, &K_increment);
+      assemble(old_full, true, matrix.valuePtr(), false, false, &increment, &K_increment);
   if (!status.ok) {
     return solver::EvaluationStatus::failure("predictor: " + status.message);
   }
@@ -357,7 +365,7 @@ solver::EvaluationStatus TetProblem::internal_force(const Eigen::VectorXd& u,
   }
   trial_valid_ = false;
   u_full_ = full_displacement(u);
-  const solver::EvaluationStatus status = assemble(u_full_, false, nullptr, false);
+  const solver::EvaluationStatus status = assemble(u_full_, false, nullptr, false, false);
   if (status.ok) {
     f_int = f_int_;
     last_u_ = u;

@@ -148,10 +148,11 @@ class TetProblem : public solver::NonlinearProblem {
 
  private:
   // use_base: mixed formulation, update p~, J~ from the current base (when there is one) instead
-  // of projecting exactly (continuum/mixed_bases.hpp).
+  // of projecting exactly (continuum/mixed_bases.hpp). trial_is_current: the trial history is
+  // that of the last evaluation, at this same u_full (materials::PointInput::trial_is_current).
   // With increment (all DOFs), also K_increment = K_all increment element by element.
   solver::EvaluationStatus assemble(const Eigen::VectorXd& u_full, bool want_tangent,
-                                    double* values, bool use_base,
+                                    double* values, bool use_base, bool trial_is_current,
                                     const Eigen::VectorXd* increment = nullptr,
                                     Eigen::VectorXd* K_increment = nullptr);
   // Element e's kernel (displacement or mixed, by formulation_) at ws.ue into ws; base: the
@@ -159,6 +160,8 @@ class TetProblem : public solver::NonlinearProblem {
   KernelStatus element_kernel(int e, const MaterialContext& ctx, bool tangent, ElementWorkspace& ws,
                               const continuum::MixedBase* base = nullptr) const;
   std::string describe_failure(int e, const KernelStatus& s) const;
+  // Whether the trial history is that of a successful evaluation at free values u in this step.
+  bool trial_is_at(const Eigen::VectorXd& u) const;
 
   const TetSpace& space_;
   const materials::MaterialLaw& law_;

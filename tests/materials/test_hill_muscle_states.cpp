@@ -205,7 +205,7 @@ TEST(MaterialStates, SubstepsAreRepeatedSingleSteps) {
       return in;
     };
     // The CE at rest with σ_SEE = 0 (the fibre has just been activated).
-    std::vector<double> committed = {1.0, (1.0 + p.k) * lf0 - p.k, 0.0, lf0, 0.0, 0.0};
+    std::vector<double> committed = {1.0, (1.0 + p.k) * lf0 - p.k, 0.0, lf0, 0.0, 0.0, 0.0, 0.0};
     const int m = law.fibre().substep_count(committed, time, dt);
     EXPECT_GT(m, 4) << model;
     EXPECT_EQ(law.fibre().substep_count(committed, 0.05, dt), 1) << model << ": passive";
@@ -258,7 +258,7 @@ TEST(MaterialStates, SubstepEstimateFollowsTheStateTheBoundDoesNot) {
   const HillFibreParameters& p = fe.parameters();
   const double dt = 0.01, time = 0.1, lf = 0.9;
   // Front: σ_SEE = 0 at full activation.
-  const std::vector<double> front = {1.0, (1.0 + p.k) * lf - p.k, 0.0, lf, 0.0, 0.0};
+  const std::vector<double> front = {1.0, (1.0 + p.k) * lf - p.k, 0.0, lf, 0.0, 0.0, 0.0, 0.0};
   EXPECT_EQ(fe.substep_count(front, time, dt), fb.substep_count(front, time, dt));
   EXPECT_GT(fb.substep_count(front, time, dt), 20);
   // Steady shortening: the CE shortens at half its maximal rate and the fibre with it, so that the
@@ -285,7 +285,8 @@ TEST(MaterialStates, SubstepEstimateFollowsTheStateTheBoundDoesNot) {
   const HillFibre& fr = dynamic_cast<const HillMuscle&>(*ramp).fibre();
   const double ft_before = ramp->activation(0.005), ft_now = ramp->activation(0.006);
   const double ls_iso = 1.0 + std::log1p(p.sigma0 * ft_before * fl / p.beta) / p.alpha;
-  const std::vector<double> iso = {ls_iso, (1.0 + p.k) * lf - p.k * ls_iso, 0.0, lf, 0.0, 0.0};
+  const std::vector<double> iso = {ls_iso, (1.0 + p.k) * lf - p.k * ls_iso, 0.0, lf, 0.0, 0.0, 0.0,
+                                   0.0};
   const double rise = std::log(ft_now / ft_before) / p.alpha;
   EXPECT_EQ(fr.substep_count(iso, 0.006, 0.001),
             static_cast<int>(std::ceil(p.alpha * rise / p.substep_see_strain)));

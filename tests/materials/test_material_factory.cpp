@@ -59,8 +59,9 @@ TEST(MaterialFactory, MuscleDefaultsAreThesisTables) {
   EXPECT_EQ(l.fibre.v_max, 17.0);
   EXPECT_EQ(l.fibre.lambda_opt, 1.05);
   EXPECT_EQ(l.fibre.k, 0.3);
-  EXPECT_EQ(lu->history_names(), (std::vector<std::string>{"lambda_s", "lambda_m", "delta_lambda_m",
-                                                           "lambda_f", "see_rate", "fibre_rate"}));
+  EXPECT_EQ(lu->history_names(),
+            (std::vector<std::string>{"lambda_s", "lambda_m", "delta_lambda_m", "lambda_f",
+                                      "see_rate", "fibre_rate", "see_stress", "see_stiffness"}));
   EXPECT_EQ(lu->cauchy_part_names(), (std::vector<std::string>{"see", "pe", "matrix", "vol"}));
   EXPECT_TRUE(lu->uses_fibre());
   EXPECT_TRUE(lu->has_volumetric_split());

@@ -178,7 +178,7 @@ TEST(SeriesElement, AbsurdInputFailsWithoutNaN) {
 
 TEST(SeriesElement, LawReportsLocalSolveFailureAndKeepsHistoryFinite) {
   const auto law = make_material("lu2010");
-  std::vector<double> committed = {1.3, 0.9, -1e-3, 1.0, 0.0, 0.0};
+  std::vector<double> committed = {1.3, 0.9, -1e-3, 1.0, 0.0, 0.0, 0.0, 0.0};
   std::vector<double> trial(kHillHistorySize, -7.0);
   PointInput in;
   in.F = Eigen::Vector3d(0.97, 0.97, 1.06).asDiagonal();
@@ -195,7 +195,7 @@ TEST(SeriesElement, LawReportsLocalSolveFailureAndKeepsHistoryFinite) {
     EXPECT_TRUE(out.S.allFinite());
   }
   // A committed history that overflows σ_SEE.
-  std::vector<double> bad = {1e5, 0.9, -1e-3, 1.0, 0.0, 0.0};
+  std::vector<double> bad = {1e5, 0.9, -1e-3, 1.0, 0.0, 0.0, 0.0, 0.0};
   in.history = bad;
   in.dt = 1e-3;
   EXPECT_EQ(law->evaluate(in, out), PointStatus::local_solve_failed);

@@ -1,6 +1,7 @@
 // TetProblem: patch tests (affine displacement reproduced at every quadrature point), the
-// assembled tangent against central differences of the residual for an activated Hill muscle, and
-// failure reporting for an inverted element.
+// assembled tangent against central differences of the residual for an activated Hill muscle, the
+// tangent pass at the last evaluated state reading the trial history, and failure reporting for
+// an inverted element.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -8,6 +9,7 @@
 #include "materials/material_factory.hpp"
 #include "materials/strong_ellipticity.hpp"
 #include "solver/newton.hpp"
+#include "tests/support/offer_counting_law.hpp"
 #include "tet/tet_fibres.hpp"
 #include "tet/tet_mesh.hpp"
 #include "tet/tet_problem.hpp"
@@ -197,6 +199,52 @@ TEST(TetTangent, MatchesCentralDifferencesForActivatedHillMuscle) {
     EXPECT_LT(err, 1e-6);
     EXPECT_LT((Kd - Kd.transpose()).cwiseAbs().maxCoeff() / scale, 1e-12);
   }
+}
+
+// Evaluated again at the free values of the last evaluation in the same step (Newton's tangent
+// pass after its line search), the law is offered the trial history at every point and nowhere
+// else; the residual and tangent are bitwise those of the same pass with the offer refused.
+TEST(TetProblem, TangentPassAtTheLastEvaluatedStateReadsTheTrialHistory) {
+  const TetMesh mesh =
+      structured_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.01, 0.01, 0.02), {1, 1, 2}, 2);
+  const TetSpace space(mesh);
+  const auto muscle = materials::make_material("tang2009");
+  std::vector<Eigen::Vector3d> fibres(
+      static_cast<std::size_t>(space.num_elements() * space.points_per_element()),
+      Eigen::Vector3d(0.2, 0.1, 1.0).normalized());
+  TetDirichlet bottom;
+  bottom.nodes = nodes_on_plane(mesh, 2, 0.0, 1e-12);
+  TetProblemOptions opt;
+  opt.formulation = Formulation::displacement;
+  opt.threads = 1;
+  test_support::OfferCountingLaw reading(*muscle, false), refusing(*muscle, true);
+  TetProblem a(space, reading, fibres, {bottom}, {}, opt),
+      b(space, refusing, fibres, {bottom}, {}, opt);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  Eigen::VectorXd u(a.size());
+  for (int i = 0; i < u.size(); ++i)
+    u[i] = 2e-4 * d(rng);
+  const Eigen::VectorXd elsewhere = 0.5 * u;
+  Eigen::VectorXd r_a, r_b;
+  solver::SparseMatrix K_a, K_b;
+  for (TetProblem* p : {&a, &b}) {
+    p->begin_step(0.02, 0.005);
+    ASSERT_TRUE(p->evaluate(elsewhere, r_a, nullptr).ok);
+  }
+  ASSERT_TRUE(a.evaluate(u, r_a, &K_a).ok);
+  EXPECT_EQ(reading.offered.load(), 0) << "offered after an evaluation at other values";
+  for (TetProblem* p : {&a, &b}) {
+    p->begin_step(0.025, 0.005);
+    ASSERT_TRUE(p->evaluate(u, r_a, nullptr).ok);
+  }
+  ASSERT_TRUE(a.evaluate(u, r_a, &K_a).ok);
+  ASSERT_TRUE(b.evaluate(u, r_b, &K_b).ok);
+  const long points = space.num_elements() * space.points_per_element();
+  EXPECT_EQ(reading.offered.load(), points);
+  EXPECT_EQ(refusing.offered.load(), points);
+  EXPECT_EQ(r_a, r_b);
+  EXPECT_EQ(Eigen::MatrixXd(K_a), Eigen::MatrixXd(K_b));
 }
 
 TEST(TetProblem, InvertedElementIsNamed) {
