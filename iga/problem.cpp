@@ -314,9 +314,12 @@ solver::EvaluationStatus Problem::internal_force(const Eigen::VectorXd& u, Eigen
     throw std::invalid_argument("iga::Problem::internal_force: vector of size " +
                                 std::to_string(u.size()) + ", expected " + std::to_string(size()));
   }
+  // The reaction probes ask at the converged state, which Newton has just evaluated.
+  const bool trial_is_current = trial_is_at(u);
   trial_valid_ = false;
   constraints_.expand(u, time_, u_full_);
-  const solver::EvaluationStatus status = assemble(u_full_, false, nullptr, false, false);
+  const solver::EvaluationStatus status =
+      assemble(u_full_, false, nullptr, false, trial_is_current);
   if (status.ok) {
     f_int = f_int_;
     last_u_ = u;

@@ -134,7 +134,8 @@ class Problem : public solver::NonlinearProblem {
 
   // --- outputs ---
   // Internal force at ALL DOFs for free values u (an assembly pass without tangent). The trial
-  // history is scratch and may change; the committed state does not.
+  // history is scratch and may change; the committed state does not. At the free values of the
+  // last evaluation (the converged state, before commit_step) the law reads its trial history.
   solver::EvaluationStatus internal_force(const Eigen::VectorXd& u, Eigen::VectorXd& f_int);
   // Sum over nodes of the force components of a full force vector: the reaction on a supported
   // face is the internal force at its DOFs (N).

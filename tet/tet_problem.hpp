@@ -140,7 +140,9 @@ class TetProblem : public solver::NonlinearProblem {
   continuum::SteppedResponse committed_response(int e, int q) const;
   const Eigen::VectorXd& external_force() const { return f_ext_; }
   // Internal force at ALL DOFs (3 per node, N) for free values u: an assembly pass without
-  // tangent. The trial history is scratch; the committed state does not change.
+  // tangent. The trial history is scratch; the committed state does not change. At the free
+  // values of the last evaluation (the converged state, before commit_step) the law reads its
+  // trial history.
   solver::EvaluationStatus internal_force(const Eigen::VectorXd& u, Eigen::VectorXd& f_int);
   // Sum over nodes of a full force vector (N): with f_int - f_ext it is the reaction on a
   // supported node set.

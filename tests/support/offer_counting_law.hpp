@@ -13,7 +13,7 @@ namespace isomuscle::test_support {
 class OfferCountingLaw final : public materials::MaterialLaw {
  public:
   OfferCountingLaw(const MaterialLaw& inner, bool refuse) : inner_(inner), refuse_(refuse) {}
-  mutable std::atomic<long> offered{0}, evaluations{0};
+  mutable std::atomic<long> offered{0};
 
   std::string name() const override { return inner_.name(); }
   int history_size() const override { return inner_.history_size(); }
@@ -36,7 +36,6 @@ class OfferCountingLaw final : public materials::MaterialLaw {
 
  private:
   materials::PointInput count(const materials::PointInput& in) const {
-    ++evaluations;
     offered += in.trial_is_current ? 1 : 0;
     materials::PointInput copy = in;
     copy.trial_is_current = in.trial_is_current && !refuse_;

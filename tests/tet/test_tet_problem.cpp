@@ -202,8 +202,9 @@ TEST(TetTangent, MatchesCentralDifferencesForActivatedHillMuscle) {
 }
 
 // Evaluated again at the free values of the last evaluation in the same step (Newton's tangent
-// pass after its line search), the law is offered the trial history at every point and nowhere
-// else; the residual and tangent are bitwise those of the same pass with the offer refused.
+// pass after its line search, the reaction probes' internal force), the law is offered the trial
+// history at every point and nowhere else; the residual, tangent and internal force are bitwise
+// those of the same passes with the offer refused.
 TEST(TetProblem, TangentPassAtTheLastEvaluatedStateReadsTheTrialHistory) {
   const TetMesh mesh =
       structured_box(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.01, 0.01, 0.02), {1, 1, 2}, 2);
@@ -245,6 +246,12 @@ TEST(TetProblem, TangentPassAtTheLastEvaluatedStateReadsTheTrialHistory) {
   EXPECT_EQ(refusing.offered.load(), points);
   EXPECT_EQ(r_a, r_b);
   EXPECT_EQ(Eigen::MatrixXd(K_a), Eigen::MatrixXd(K_b));
+  // The reaction probes' internal force at the same state reads it too.
+  Eigen::VectorXd f_a, f_b;
+  ASSERT_TRUE(a.internal_force(u, f_a).ok);
+  ASSERT_TRUE(b.internal_force(u, f_b).ok);
+  EXPECT_EQ(reading.offered.load(), 2 * points);
+  EXPECT_EQ(f_a, f_b);
 }
 
 TEST(TetProblem, InvertedElementIsNamed) {
