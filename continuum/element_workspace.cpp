@@ -1,6 +1,7 @@
 #include "continuum/element_workspace.hpp"
 
 #include <sstream>
+#include <stdexcept>
 
 #include "continuum/point_contributions.hpp"
 
@@ -24,6 +25,22 @@ MaterialContext element_material_context(const materials::MaterialLaw& law,
     ctx.history_trial = history_trial;
   }
   return ctx;
+}
+
+UniformMaterialContext::UniformMaterialContext(const materials::MaterialLaw& law,
+                                               const Eigen::Vector3d& fibre,
+                                               const std::vector<double>& history, double time,
+                                               double dt, int nqp)
+    : fibres_(static_cast<std::size_t>(nqp), fibre) {
+  const std::size_t hs = static_cast<std::size_t>(law.history_size());
+  if (history.size() != hs)
+    throw std::invalid_argument("uniform material state: " + std::to_string(history.size()) +
+                                " history values, the law '" + law.name() + "' has " +
+                                std::to_string(hs));
+  for (int q = 0; q < nqp; ++q)
+    committed_.insert(committed_.end(), history.begin(), history.end());
+  trial_.resize(committed_.size());
+  context_ = element_material_context(law, fibres_, 0, nqp, time, dt, committed_, trial_.data());
 }
 
 // The failure itself, in words (no equation; J = det F, J~ the projected dilatation).

@@ -46,6 +46,24 @@ MaterialContext element_material_context(const materials::MaterialLaw& law,
                                          const std::vector<double>& history_committed,
                                          double* history_trial);
 
+// The material context of an element whose nqp points all hold one state (a homogeneous
+// deformation: the stability checks' layers and columns): the state's fibre and committed history
+// repeated at every point, with trial scratch. context points into this object, which therefore
+// neither copies nor moves.
+class UniformMaterialContext {
+ public:
+  UniformMaterialContext(const materials::MaterialLaw& law, const Eigen::Vector3d& fibre,
+                         const std::vector<double>& history, double time, double dt, int nqp);
+  UniformMaterialContext(const UniformMaterialContext&) = delete;
+  UniformMaterialContext& operator=(const UniformMaterialContext&) = delete;
+  const MaterialContext& context() const { return context_; }
+
+ private:
+  std::vector<Eigen::Vector3d> fibres_;
+  std::vector<double> committed_, trial_;
+  MaterialContext context_;
+};
+
 // Why a kernel failed, without allocation; the discretisation turns it into a message naming the
 // element (describe_kernel_status gives the part after the location).
 struct KernelStatus {

@@ -133,20 +133,8 @@ PeriodicLayer::PeriodicLayer(const LayerGeometry& given, const LayerState& state
   const materials::MaterialLaw& law = *state.law;
   const int nen = space.functions_per_element();
   const int nqp = space.points_per_element();
-  const std::size_t hs = static_cast<std::size_t>(law.history_size());
-  const std::vector<Eigen::Vector3d> fibres(static_cast<std::size_t>(nqp), state.fibre);
-  std::vector<double> committed, trial(static_cast<std::size_t>(nqp) * hs);
-  for (int q = 0; q < nqp; ++q)
-    committed.insert(committed.end(), state.history.begin(), state.history.end());
-  continuum::MaterialContext context;
-  context.law = &law;
-  context.fibres = fibres.data();
-  context.time = state.time;
-  context.dt = state.dt;
-  if (hs > 0) {
-    context.history_committed = committed.data();
-    context.history_trial = trial.data();
-  }
+  const continuum::UniformMaterialContext material(law, state.fibre, state.history, state.time,
+                                                   state.dt, nqp);
 
   const Eigen::Matrix3d gradient = state.F - Eigen::Matrix3d::Identity();
   ElementWorkspace ws(nen, nqp, pressure.size());
@@ -164,7 +152,7 @@ PeriodicLayer::PeriodicLayer(const LayerGeometry& given, const LayerState& state
       column.offset.emplace_back(cp % n0, (cp / n0) % n1);
     }
     const KernelStatus status =
-        mixed_kernel(element_view(space, e), context, pressure, e, nullptr, true, ws);
+        mixed_kernel(element_view(space, e), material.context(), pressure, e, nullptr, true, ws);
     if (!status.ok())
       throw std::runtime_error("periodic layer: the mixed element fails at the state: " +
                                continuum::describe_kernel_status(status, law.name()));

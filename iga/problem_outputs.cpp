@@ -190,25 +190,16 @@ Eigen::MatrixXd Problem::committed_element_tangent(int e, const LayerState* homo
     committed_element_pass(e, ws, true);
     return ws.ke;
   }
-  const std::size_t hs = static_cast<std::size_t>(history_size_);
-  if (homogeneous->history.size() != hs) {
-    throw std::invalid_argument("committed_element_tangent: the homogeneous state has " +
-                                std::to_string(homogeneous->history.size()) +
-                                " history values, the law " + std::to_string(hs));
-  }
+  const continuum::UniformMaterialContext material(law_, homogeneous->fibre, homogeneous->history,
+                                                   homogeneous->time, homogeneous->dt, nqp);
   const Eigen::Matrix3d gradient = homogeneous->F - Eigen::Matrix3d::Identity();
   const auto cps = space_.control_points(e);
   for (std::size_t a = 0; a < cps.size(); ++a) {
     ws.ue.col(static_cast<Eigen::Index>(a)) =
         gradient * space_.volume().points()[static_cast<std::size_t>(cps[a])];
   }
-  const std::vector<Eigen::Vector3d> fibres(static_cast<std::size_t>(nqp), homogeneous->fibre);
-  std::vector<double> history, scratch(static_cast<std::size_t>(nqp) * hs);
-  for (int q = 0; q < nqp; ++q)
-    history.insert(history.end(), homogeneous->history.begin(), homogeneous->history.end());
-  const MaterialContext ctx = continuum::element_material_context(
-      law_, fibres, 0, nqp, homogeneous->time, homogeneous->dt, history, scratch.data());
   const ElementView view = element_view(space_, e);
+  const MaterialContext& ctx = material.context();
   const KernelStatus ks = mixed ? mixed_kernel(view, ctx, pressure_, e, nullptr, true, ws)
                                 : displacement_kernel(view, ctx, true, ws);
   if (!ks.ok()) {

@@ -11,8 +11,17 @@
 
 namespace isomuscle::io {
 
-iga::PeriodicLayer element_column_at(const iga::Problem& problem, const SurfaceLocation& where,
-                                     const iga::LayerState* homogeneous) {
+namespace {
+
+// The column's elements with their depth rows and surface offsets, and the lumped volumes of the
+// rows: what does not depend on the state the elements are taken at.
+struct ColumnLayout {
+  std::vector<int> elements;
+  std::vector<iga::ColumnElement> column;  // tangents not yet set
+  Eigen::VectorXd lumped;
+};
+
+ColumnLayout column_layout(const iga::Problem& problem, const SurfaceLocation& where) {
   if (where.side_direction < 0 || where.side_direction > 2)
     throw std::invalid_argument("the element column check needs a side of a NURBS solid");
   const iga::Space& space = problem.space();
@@ -21,8 +30,8 @@ iga::PeriodicLayer element_column_at(const iga::Problem& problem, const SurfaceL
   const int d = where.side_direction, a = (d + 1) % 3, b = (d + 2) % 3;
   const std::array<int, 3>& site = space.element(where.element).position;
   const int rows = volume.count(d);
-  std::vector<iga::ColumnElement> column;
-  Eigen::VectorXd lumped = Eigen::VectorXd::Zero(rows);
+  ColumnLayout layout;
+  layout.lumped = Eigen::VectorXd::Zero(rows);
   for (int e = 0; e < space.num_elements(); ++e) {
     const std::array<int, 3>& position = space.element(e).position;
     if (position[static_cast<std::size_t>(a)] != site[static_cast<std::size_t>(a)] ||
@@ -38,34 +47,45 @@ iga::PeriodicLayer element_column_at(const iga::Problem& problem, const SurfaceL
       element.offset.emplace_back(index[static_cast<std::size_t>(a)],
                                   index[static_cast<std::size_t>(b)]);
     }
-    element.tangent = problem.committed_element_tangent(e, homogeneous);
     for (int q = 0; q < space.points_per_element(); ++q) {
       const auto values = space.values(e, q);
       for (std::size_t f = 0; f < values.size(); ++f)
-        lumped[element.row[f]] += values[f] * space.dv(e, q);
+        layout.lumped[element.row[f]] += values[f] * space.dv(e, q);
     }
-    column.push_back(std::move(element));
+    layout.elements.push_back(e);
+    layout.column.push_back(std::move(element));
   }
-  return iga::PeriodicLayer(std::move(column), std::move(lumped));
+  return layout;
+}
+
+// The layout's elements with their tangents at their committed states, or all at homogeneous.
+iga::PeriodicLayer column_at(const iga::Problem& problem, ColumnLayout layout,
+                             const iga::LayerState* homogeneous) {
+  for (std::size_t i = 0; i < layout.column.size(); ++i)
+    layout.column[i].tangent = problem.committed_element_tangent(layout.elements[i], homogeneous);
+  return iga::PeriodicLayer(std::move(layout.column), std::move(layout.lumped));
+}
+
+}  // namespace
+
+iga::PeriodicLayer element_column_at(const iga::Problem& problem, const SurfaceLocation& where,
+                                     const iga::LayerState* homogeneous) {
+  return column_at(problem, column_layout(problem, where), homogeneous);
 }
 
 ElementColumnCheck assess_element_column(const iga::Problem& problem,
                                          const SurfaceLocation& where) {
   ElementColumnCheck check;
   const iga::LayerState state = problem.committed_layer_state(where.element, where.point);
-  check.lowest = element_column_at(problem, where).lowest();
-  check.homogeneous = element_column_at(problem, where, &state).lowest();
-  const int d = where.side_direction;
-  check.elements = problem.space().element_counts()[static_cast<std::size_t>(d)];
+  ColumnLayout layout = column_layout(problem, where);
+  check.elements = static_cast<int>(layout.elements.size());
+  check.lowest = column_at(problem, layout, nullptr).lowest();
+  check.homogeneous = column_at(problem, std::move(layout), &state).lowest();
   return check;
 }
 
 double element_column_value(const iga::Problem& problem, const SurfaceLocation& where) {
-  try {
-    return element_column_at(problem, where).lowest().eigenvalue;
-  } catch (const std::runtime_error&) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
+  return lowest_eigenvalue_or_nan([&] { return element_column_at(problem, where); });
 }
 
 std::string describe(const ElementColumnCheck& c, double shear_modulus) {

@@ -17,6 +17,8 @@
 // A column is translated, not bent: in-plane stresses varying through the depth (bending) are
 // taken as they are, without the curvature that balances them in the body.
 #include <Eigen/Core>
+#include <limits>
+#include <stdexcept>
 #include <string>
 
 #include "iga/periodic_layer_stability.hpp"
@@ -44,6 +46,18 @@ iga::PeriodicLayer element_column_at(const iga::Problem& problem, const SurfaceL
 
 // Both analyses above; throws as element_column_at.
 ElementColumnCheck assess_element_column(const iga::Problem& problem, const SurfaceLocation& where);
+
+// The lowest Bloch eigenvalue of the layer that make_layer() builds (Pa/m^2), NaN where an element
+// fails at its state (std::runtime_error): the element_layer probe's values, which a failed check
+// must not end the run for.
+template <class MakeLayer>
+double lowest_eigenvalue_or_nan(MakeLayer&& make_layer) {
+  try {
+    return make_layer().lowest().eigenvalue;
+  } catch (const std::runtime_error&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
 
 // The element_layer probe's second column (scene.hpp): the column's lowest Bloch eigenvalue at the
 // committed states (Pa/m^2), NaN where an element fails at its state.

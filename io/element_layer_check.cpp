@@ -3,10 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
-#include <limits>
-#include <numbers>
 #include <stdexcept>
 
 #include "iga/problem.hpp"
@@ -68,14 +65,10 @@ ElementLayerCheck assess_element_layer(const iga::Problem& problem, const Surfac
 }
 
 double element_layer_value(const iga::Problem& problem, const SurfaceLocation& where) {
-  try {
+  return lowest_eigenvalue_or_nan([&] {
     return iga::PeriodicLayer(element_layer_at(problem, where),
-                              problem.committed_layer_state(where.element, where.point))
-        .lowest()
-        .eigenvalue;
-  } catch (const std::runtime_error&) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
+                              problem.committed_layer_state(where.element, where.point));
+  });
 }
 
 std::string describe(const ElementLayerCheck& c) {
