@@ -235,12 +235,12 @@ solver::EvaluationStatus Problem::evaluate(const Eigen::VectorXd& u, Eigen::Vect
   return solver::EvaluationStatus::success();
 }
 
-// Makes the trial history at u the committed one (re-evaluating when the last evaluation was
-// elsewhere), and keeps the history it replaces for state_at().
 bool Problem::trial_is_at(const Eigen::VectorXd& u) const {
   return trial_valid_ && last_time_ == time_ && last_u_.size() == u.size() && last_u_ == u;
 }
 
+// Makes the trial history at u the committed one (re-evaluating when the last evaluation was
+// elsewhere), and keeps the history it replaces for state_at().
 void Problem::commit_step(const Eigen::VectorXd& u) {
   if (!trial_is_at(u)) {
     Eigen::VectorXd r;

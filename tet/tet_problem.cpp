@@ -294,12 +294,12 @@ solver::EvaluationStatus TetProblem::evaluate(const Eigen::VectorXd& u, Eigen::V
   return solver::EvaluationStatus::success();
 }
 
-// Makes the trial history at u the committed one (re-evaluating when the last evaluation was
-// elsewhere).
 bool TetProblem::trial_is_at(const Eigen::VectorXd& u) const {
   return trial_valid_ && last_u_.size() == u.size() && last_u_ == u;
 }
 
+// Makes the trial history at u the committed one (re-evaluating when the last evaluation was
+// elsewhere).
 void TetProblem::commit_step(const Eigen::VectorXd& u) {
   if (!trial_is_at(u)) {
     Eigen::VectorXd r;
