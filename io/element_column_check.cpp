@@ -1,7 +1,6 @@
 #include "io/element_column_check.hpp"
 
 #include <cstdio>
-#include <limits>
 #include <stdexcept>
 #include <utility>
 #include <vector>
