@@ -223,6 +223,7 @@ solver::EvaluationStatus Problem::evaluate(const Eigen::VectorXd& u, Eigen::Vect
     return status;
   }
   evaluated_J_range_ = continuum::JacobianRange::of(thread_J_range_);
+  add_supports(u_full_, values);
   Eigen::VectorXd diff = f_int_ - f_ext_;
   constraints_.restrict_to_free(diff, residual);
   if (!residual.allFinite()) {
@@ -233,6 +234,36 @@ solver::EvaluationStatus Problem::evaluate(const Eigen::VectorXd& u, Eigen::Vect
   last_time_ = time_;
   trial_valid_ = true;
   return solver::EvaluationStatus::success();
+}
+
+void Problem::set_elastic_supports(const std::vector<ElasticSupport>& supports) {
+  supports_ = support_element_matrices(space_, supports);
+  support_settings_ = supports;
+  trial_valid_ = false;
+}
+
+// f_int += K_e u_e, K += K_e, K_increment += K_e increment_e over the supported elements.
+void Problem::add_supports(const Eigen::VectorXd& u_full, double* tangent_values,
+                           const Eigen::VectorXd* increment, Eigen::VectorXd* K_increment) {
+  Eigen::VectorXd ue, fe;
+  for (const SupportElementMatrix& s : supports_) {
+    const auto& all = element_all_dofs_[s.element];
+    ue.resize(static_cast<Eigen::Index>(all.size()));
+    for (std::size_t i = 0; i < all.size(); ++i)
+      ue[static_cast<Eigen::Index>(i)] = u_full[all[i]];
+    fe.noalias() = s.matrix * ue;
+    for (std::size_t i = 0; i < all.size(); ++i)
+      f_int_[all[i]] += fe[static_cast<Eigen::Index>(i)];
+    if (tangent_values != nullptr)
+      pattern_.add_element_matrix(s.element, s.matrix, tangent_values);
+    if (increment != nullptr) {
+      for (std::size_t i = 0; i < all.size(); ++i)
+        ue[static_cast<Eigen::Index>(i)] = (*increment)[all[i]];
+      fe.noalias() = s.matrix * ue;
+      for (std::size_t i = 0; i < all.size(); ++i)
+        (*K_increment)[all[i]] += fe[static_cast<Eigen::Index>(i)];
+    }
+  }
 }
 
 bool Problem::trial_is_at(const Eigen::VectorXd& u) const {
@@ -285,6 +316,7 @@ solver::EvaluationStatus Problem::predict(Eigen::VectorXd& u) {
   if (!status.ok) {
     return solver::EvaluationStatus::failure("predictor: " + status.message);
   }
+  add_supports(old_full, matrix.valuePtr(), &increment, &K_increment);
   const Eigen::VectorXd full_rhs = f_int_ + K_increment - f_ext_;
   Eigen::VectorXd rhs;
   constraints_.restrict_to_free(full_rhs, rhs);

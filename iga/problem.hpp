@@ -27,6 +27,7 @@
 #include "continuum/point_state.hpp"
 #include "iga/boundary_conditions.hpp"
 #include "iga/dof_map.hpp"
+#include "iga/elastic_support.hpp"
 #include "iga/element_kernels.hpp"
 #include "iga/field_evaluation.hpp"
 #include "iga/loads.hpp"
@@ -103,6 +104,11 @@ class Problem : public solver::NonlinearProblem {
   solver::EvaluationStatus predict(Eigen::VectorXd& u) override;
 
   // --- set-up ---
+  // Springs on parametric sides (elastic_support.hpp), in the residual and tangent of every
+  // evaluation and the predictor from then on; internal_force leaves them out. Throws like
+  // support_element_matrices.
+  void set_elastic_supports(const std::vector<ElasticSupport>& supports);
+  const std::vector<ElasticSupport>& elastic_supports() const { return support_settings_; }
   Formulation formulation() const { return formulation_; }  // resolved (never automatic)
   const ProblemOptions& options() const { return options_; }
   void set_threads(int threads);
@@ -199,6 +205,11 @@ class Problem : public solver::NonlinearProblem {
                                     double* tangent_values, bool use_base, bool trial_is_current,
                                     const Eigen::VectorXd* increment = nullptr,
                                     Eigen::VectorXd* K_increment = nullptr);
+  // The springs' force K u_full into f_int_ and their matrix into the tangent values (when given);
+  // with increment, also K increment into K_increment (as assemble).
+  void add_supports(const Eigen::VectorXd& u_full, double* tangent_values,
+                    const Eigen::VectorXd* increment = nullptr,
+                    Eigen::VectorXd* K_increment = nullptr);
   std::string describe_failure(int e, const KernelStatus& s) const;
   // Whether the trial history is that of a successful evaluation at free values u in this step.
   bool trial_is_at(const Eigen::VectorXd& u) const;
@@ -211,6 +222,8 @@ class Problem : public solver::NonlinearProblem {
   const materials::MaterialLaw& law_;
   std::vector<Eigen::Vector3d> fibres_;
   Loads loads_;
+  std::vector<ElasticSupport> support_settings_;
+  std::vector<SupportElementMatrix> supports_;
   ProblemOptions options_;
   Formulation formulation_ = Formulation::displacement;
   ConstrainedDofs constraints_;

@@ -78,6 +78,16 @@ void add_boundary(IgaModel& model, const BoundarySettings& b, int index) {
       model.conditions.symmetry(label, std::move(nodes), normal);
       break;
     }
+    case BoundaryType::elastic:
+      // Springs are integrated over the face (iga/elastic_support.hpp): a parametric face.
+      if (!b.where.face) {
+        throw std::invalid_argument(label +
+                                    ": an elastic support acts on a parametric face of the solid "
+                                    "(face = \"u0\" ... \"w1\"), not on a plane or a point");
+      }
+      model.supports.push_back(
+          {label, model.frame.solid_side(*b.where.face), b.stiffness, b.components});
+      break;
   }
 }
 
@@ -279,6 +289,8 @@ IgaModel build_iga_model(const Scene& scene, int threads) {
   model.problem =
       std::make_unique<iga::Problem>(*model.space, *model.dofs, *model.law, std::move(fibres),
                                      model.conditions, std::move(loads), options);
+  if (!model.supports.empty())
+    model.problem->set_elastic_supports(model.supports);
   return model;
 }
 

@@ -35,6 +35,7 @@ struct IgaModel {
   std::unique_ptr<materials::MaterialLaw> law;
   iga::FibreSpec fibre_spec;
   iga::DirichletConditions conditions;
+  std::vector<iga::ElasticSupport> supports;  // [[boundary]] type = "elastic"
   std::unique_ptr<iga::Problem> problem;
   std::vector<std::string> notes;  // decisions a user should know about, for the log
   std::string failure_hint;        // appended to the reason of a failed run (empty: none)

@@ -58,7 +58,8 @@ bool supported(const std::vector<int>& nodes, const iga::ConstrainedDofs& constr
 }  // namespace
 
 std::vector<iga::Side> traction_free_sides(const iga::Space& space, const iga::DofMap& dofs,
-                                           const iga::ConstrainedDofs& constraints) {
+                                           const iga::ConstrainedDofs& constraints,
+                                           const std::vector<iga::Side>& sprung) {
   const geometry::NurbsVolume& volume = space.volume();
   std::vector<iga::Side> sides;
   for (const iga::Side side : kSides) {
@@ -67,7 +68,8 @@ std::vector<iga::Side> traction_free_sides(const iga::Space& space, const iga::D
     const std::vector<int> nodes = iga::nodes_of(dofs, iga::side_control_points(volume, side));
     if (nodes == iga::nodes_of(dofs, iga::side_control_points(volume, opposite(side))))
       continue;  // a closed seam
-    if (supported(nodes, constraints))
+    if (supported(nodes, constraints) ||
+        std::find(sprung.begin(), sprung.end(), side) != sprung.end())
       continue;
     sides.push_back(side);
   }
@@ -78,8 +80,11 @@ std::optional<SurfaceLocation> locate_surface_point(const iga::Problem& problem,
                                                     const Eigen::Vector3d& near) {
   const iga::Space& space = problem.space();
   const geometry::NurbsVolume& volume = space.volume();
+  std::vector<iga::Side> sprung;
+  for (const iga::ElasticSupport& s : problem.elastic_supports())
+    sprung.push_back(s.side);
   const std::vector<iga::Side> sides =
-      traction_free_sides(space, problem.dofs(), problem.constraints());
+      traction_free_sides(space, problem.dofs(), problem.constraints(), sprung);
   struct Candidate {
     int element = -1, point = -1;
     double to_near = std::numeric_limits<double>::infinity();

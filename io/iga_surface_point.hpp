@@ -6,7 +6,8 @@
 // * a closed seam: its nodes are the opposite side's (iga/dof_map.hpp merges them);
 // * collapsed: the centreline w = 1 of a shrink solid, each of whose rows around the axis is one
 //   node (a curve, not a surface);
-// * supported: every node of it has a prescribed component (fixed, moved, symmetry plane).
+// * supported: every node of it has a prescribed component (fixed, moved, symmetry plane), or it
+//   rests on springs (one of `sprung`, the elastic supports' sides).
 // Dead tractions are not told apart from a free surface: a loaded side counts as free.
 #include <optional>
 #include <vector>
@@ -18,7 +19,8 @@
 namespace isomuscle::io {
 
 std::vector<iga::Side> traction_free_sides(const iga::Space& space, const iga::DofMap& dofs,
-                                           const iga::ConstrainedDofs& constraints);
+                                           const iga::ConstrainedDofs& constraints,
+                                           const std::vector<iga::Side>& sprung = {});
 
 // Over the quadrature points of the elements on a traction-free side, each projected onto the
 // side along the side's parametric direction: the projection nearest `near`, then the point

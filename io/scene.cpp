@@ -92,7 +92,7 @@ const char* to_string(FibreMode m) {
 }
 
 const char* to_string(BoundaryType t) {
-  static const char* names[] = {"fixed", "displacement", "symmetry"};
+  static const char* names[] = {"fixed", "displacement", "symmetry", "elastic"};
   return names[static_cast<int>(t)];
 }
 
@@ -275,6 +275,18 @@ void BoundarySettings::validate() const {
     if (where.point)
       throw InvalidSetting("at", "cannot carry a symmetry condition: it needs a face or a plane");
     return;
+  }
+  if (type == BoundaryType::elastic) {
+    if (!where.face) {
+      throw InvalidSetting(where.point ? "at" : "face",
+                           "of an elastic support must be a face name (" + join(face_names()) +
+                               "): the springs are spread over the face's area");
+    }
+    check_range("stiffness", stiffness, Range::positive());
+  } else if (stiffness != 0.0) {
+    throw InvalidSetting(
+        "stiffness",
+        std::string("applies only to type = \"elastic\" (type is \"") + to_string(type) + "\")");
   }
   if (!components[0] && !components[1] && !components[2]) {
     throw InvalidSetting("components", "must constrain at least one of x, y, z");

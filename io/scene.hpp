@@ -127,21 +127,25 @@ struct FaceSelector {
   void validate() const;
 };
 
-// [[boundary]]: a Dirichlet condition on a face.
+// [[boundary]]: a Dirichlet condition on a face, or springs on it.
 enum class BoundaryType {
   fixed,         // the masked components are zero
   displacement,  // the masked components follow u(t) below
   symmetry,      // zero displacement along the face normal (plane faces)
+  elastic,       // springs on the masked components: traction -stiffness u per reference area (a
+                 // compliant attachment; NURBS solids, parametric faces; iga/elastic_support.hpp)
 };
 const char* to_string(BoundaryType t);
 
 struct BoundarySettings {
   FaceSelector where;
   BoundaryType type = BoundaryType::fixed;
-  std::array<bool, 3> components{true, true, true};    // x, y, z constrained (fixed, displacement)
-  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // m/s, displacement type
-  Eigen::Vector3d value = Eigen::Vector3d::Zero();     // m, constant part, displacement type
-  double start = 0.0;                                  // s, motion begins
+  std::array<bool, 3> components{true, true, true};       // x, y, z constrained (fixed,
+                                                          // displacement, elastic)
+  double stiffness = 0.0;                                 // Pa/m, elastic type
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();     // m/s, displacement type
+  Eigen::Vector3d value = Eigen::Vector3d::Zero();        // m, constant part, displacement type
+  double start = 0.0;                                     // s, motion begins
   double stop = std::numeric_limits<double>::infinity();  // s, motion ends, position then held
   void validate() const;
   // u(t) = 0 before start, else value + velocity * (min(t, stop) - start), m.

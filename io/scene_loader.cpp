@@ -202,9 +202,11 @@ BoundarySettings read_boundary(SceneTable t) {
   } else {
     b.where = read_face(t);
   }
-  const std::string type = t.choice("type", required, {"fixed", "displacement", "symmetry"});
+  const std::string type =
+      t.choice("type", required, {"fixed", "displacement", "symmetry", "elastic"});
   forbid_unused(t, "type", type,
-                {{"components", {"fixed", "displacement"}},
+                {{"components", {"fixed", "displacement", "elastic"}},
+                 {"stiffness", {"elastic"}},
                  {"velocity", {"displacement"}},
                  {"value", {"displacement"}},
                  {"start", {"displacement"}},
@@ -226,6 +228,10 @@ BoundarySettings read_boundary(SceneTable t) {
       b.value = to_vector(*value);
     b.start = t.number("start", b.start, Range::non_negative());
     b.stop = t.number("stop", b.stop);
+  } else if (type == "elastic") {
+    b.type = BoundaryType::elastic;
+    b.components = read_components(t);
+    b.stiffness = t.number("stiffness", required, Range::positive());
   } else {
     b.type = BoundaryType::symmetry;
   }

@@ -69,6 +69,11 @@ tet::TetDirichlet condition(const TetModel& model, const BoundarySettings& b, in
       c.components = b.components;
       c.value = [b](const Eigen::Vector3d&, double t) { return b.prescribed_displacement(t); };
       break;
+    case BoundaryType::elastic:
+      throw std::invalid_argument(label +
+                                  ": elastic supports are not offered on tetrahedra yet (the "
+                                  "springs are integrated over parametric faces of the NURBS "
+                                  "solid; discretisation = \"iga\")");
     case BoundaryType::symmetry: {
       if (!b.where.plane) {
         throw std::invalid_argument(label +

@@ -393,6 +393,37 @@ TEST_F(SceneLoader, BoundaryConditionsAreChecked) {
       "stop = 0.5\n");
   EXPECT_EQ(error(stop).message(), "'stop' in [[boundary]] #2 must be > start (1) (got 0.5)");
 
+  // Elastic supports: springs on a named face, a stiffness in Pa/m, components as for "fixed".
+  const Scene sprung = parse(minimal(
+      "[[boundary]]\nface = \"v1\"\ntype = \"elastic\"\nstiffness = 2e6\ncomponents = [\"z\"]\n"));
+  ASSERT_EQ(sprung.boundaries.size(), 2u);
+  EXPECT_EQ(sprung.boundaries[1].type, BoundaryType::elastic);
+  EXPECT_EQ(sprung.boundaries[1].stiffness, 2e6);
+  EXPECT_EQ(sprung.boundaries[1].components, (std::array<bool, 3>{false, false, true}));
+  EXPECT_EQ(parse(minimal("[[boundary]]\nface = \"v1\"\ntype = \"elastic\"\nstiffness = 1\n"))
+                .boundaries[1]
+                .components,
+            (std::array<bool, 3>{true, true, true}));
+  const std::string soft =
+      minimal("[[boundary]]\nface = \"v1\"\ntype = \"elastic\"\nstiffness = 0\n");
+  EXPECT_EQ(error(soft).line(), line_containing(soft, "stiffness = 0"));
+  EXPECT_EQ(error(soft).message(), "'stiffness' in [[boundary]] #2 must be > 0 (got 0)");
+  const std::string missing = minimal("[[boundary]]\nface = \"v1\"\ntype = \"elastic\"\n");
+  EXPECT_NE(error(missing).message().find("'stiffness'"), std::string::npos)
+      << error(missing).message();
+  const std::string stray =
+      minimal("[[boundary]]\nface = \"v1\"\ntype = \"fixed\"\nstiffness = 1e6\n");
+  EXPECT_EQ(error(stray).line(), line_containing(stray, "stiffness = 1e6"));
+  EXPECT_NE(error(stray).message().find("elastic"), std::string::npos) << error(stray).message();
+  const std::string on_plane = minimal(
+      "[[boundary]]\nface = { point = [0, 0, 0], normal = [0, 0, 1] }\ntype = \"elastic\"\n"
+      "stiffness = 1e6\n");
+  EXPECT_EQ(error(on_plane).message(),
+            "'face' in [[boundary]] #2 of an elastic support must be a face name (u0, u1, v0, v1, "
+            "w0, w1): the springs are spread over the face's area");
+  const std::string typo = minimal("[[boundary]]\nface = \"v1\"\ntype = \"elastik\"\n");
+  EXPECT_NE(error(typo).message().find("\"elastic\""), std::string::npos) << error(typo).message();
+
   std::string no_boundary = minimal();
   const std::string entry = "[[boundary]]\nface = \"v0\"\ntype = \"fixed\"\n";
   no_boundary.erase(no_boundary.find(entry), entry.size());
