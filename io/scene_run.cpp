@@ -13,6 +13,7 @@
 #include "io/csv_writer.hpp"
 #include "io/iga_run_model.hpp"
 #include "io/material_ellipticity.hpp"
+#include "io/process_memory.hpp"
 #include "io/run_model.hpp"
 #include "io/surface_stability_check.hpp"
 #include "io/tet_run_model.hpp"
@@ -275,6 +276,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     result.converged = s.converged;
     result.failure_reason = failure;
     wall.total = seconds_since(start);
+    s.extra["peak_memory_mib"] = peak_resident_mebibytes();
     write_summary(s, result.summary_path);
     return result;
   };
@@ -524,6 +526,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
              {"shifted_seconds", ls.time.shifted},
              {"failures", ls.failures},
              {"symbolic_analyses", ls.symbolic_analyses},
+             {"factor_nonzeros", stepper->newton().linear_solver().cholesky().factor_nonzeros()},
              {"min_rcond", factorised ? Json(min_rcond) : Json(nullptr)}};
     const solver::NewtonSettings& nset = stepper->newton().settings();
     s.extra["newton_tolerances"] = Json{{"relative_residual", nset.relative_residual_tolerance},

@@ -223,6 +223,20 @@ void CholmodCholesky::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   std::copy(values, values + n, x.data());
 }
 
+// cholmod_change_factor to CHOLMOD_PATTERN: a supernodal factor keeps its supernodal symbolic
+// structure (only L->x is freed), a simplicial one its permutation and column counts.
+void CholmodCholesky::release_numeric() {
+  Impl& s = *impl_;
+  s.numeric_ok = false;
+  if (s.factor == nullptr || s.factor->xtype == CHOLMOD_PATTERN)
+    return;
+  if (!cholmod_change_factor(CHOLMOD_PATTERN, s.factor->is_ll, s.factor->is_super, 1, 1, s.factor,
+                             &s.common)) {
+    throw std::runtime_error("CHOLMOD could not free the numeric factor: " +
+                             status_text(s.common.status));
+  }
+}
+
 bool CholmodCholesky::analyzed() const {
   return impl_->factor != nullptr;
 }

@@ -49,6 +49,9 @@ class CholmodCholesky {
   // x = A^{-1} b with the last successful factorisation. Throws std::logic_error when there is
   // none.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  // Frees the numeric factor (L's values, the bulk of the memory), keeping the symbolic analysis
+  // for the next factorize; solve() throws until then. Nothing happens without a factor.
+  void release_numeric();
 
   bool analyzed() const;
   bool factorized() const;

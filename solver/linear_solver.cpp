@@ -377,6 +377,13 @@ void LinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   ++s.stats.solves;
 }
 
+void LinearSolver::release_factorization() {
+  Impl& s = *impl_;
+  s.cholesky.release_numeric();
+  s.lu.release_numeric();
+  s.active = LinearMethod::None;
+}
+
 const FactorizationReport& LinearSolver::last_report() const {
   return impl_->report;
 }

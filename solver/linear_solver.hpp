@@ -123,6 +123,10 @@ class LinearSolver {
   FactorizationReport factorize(const SparseMatrix& a);
   // x = A^{-1} b with the last successful factorisation (std::logic_error when there is none).
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  // Frees the numeric factorisation (CHOLMOD's L, UMFPACK's L and U), keeping the symbolic
+  // analyses: between uses, so that two solvers of one problem (Newton's and the predictor's) do
+  // not hold a factor each. solve() throws until the next factorize; the statistics stay.
+  void release_factorization();
 
   const FactorizationReport& last_report() const;
   const LinearSolverStatistics& statistics() const;

@@ -147,6 +147,11 @@ NewtonResult NewtonSolver::solve(NonlinearProblem& problem, Eigen::VectorXd& u) 
     statistics_.residual_evaluations += result.residual_evaluations;
     statistics_.tangent_evaluations += result.tangent_evaluations;
     last_ends_on_indefinite_tangent_ = ends_on_indefinite_tangent(result);
+    // The next solve assembles and factorises afresh; until then the tangent and its factor
+    // would only hold memory, beside the predictor's (predictor_system.hpp) at the next step's
+    // start. The problem makes the matrix again from its pattern (NonlinearProblem::evaluate).
+    linear_solver_.release_factorization();
+    tangent_ = SparseMatrix();
     return result;
   };
 

@@ -38,8 +38,9 @@ class NonlinearProblem {
   // material solve returns a failure naming the place.
   // The tangent holds the storage the linear solver is set for (MatrixStorage::Upper by default:
   // the upper triangle only, as SparsityPattern builds it). NewtonSolver passes the same matrix
-  // object at every call, so a problem may give it its pattern once (SparsityPattern::
-  // make_matrix) and afterwards only overwrite the values.
+  // object at every call of one solve and empties it between solves (to free its memory), so a
+  // problem gives it its pattern when it does not have it (SparsityPattern::matches, make_matrix)
+  // and otherwise only overwrites the values.
   virtual EvaluationStatus evaluate(const Eigen::VectorXd& u, Eigen::VectorXd& residual,
                                     SparseMatrix* tangent) = 0;
 

@@ -23,6 +23,11 @@ EvaluationStatus PredictorSystem::solve(MatrixStorage storage, const Eigen::Vect
   if (!report.ok)
     return EvaluationStatus::failure("predictor: " + report.message);
   solver_->solve(rhs, du);
+  // Newton assembles and factorises its own tangent next: without this the run would hold two
+  // factors and two matrices. The matrix is made again from the pattern at the next step (an
+  // O(nnz) copy; the same pattern, so no new symbolic analysis).
+  solver_->release_factorization();
+  matrix_ = SparseMatrix();
   if (!du.allFinite())
     return EvaluationStatus::failure("predictor: non-finite increment");
   return EvaluationStatus::success();

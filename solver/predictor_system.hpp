@@ -1,7 +1,9 @@
 #pragma once
 // The linear system of the linearised Dirichlet predictor (iga::Problem::predict,
 // tet::TetProblem::predict): K_ff du_f = rhs with the tangent at the committed state. A matrix with
-// the problem's sparsity pattern and a linear solver (one symbolic analysis) kept between steps.
+// the problem's sparsity pattern and a linear solver (one symbolic analysis) kept between steps;
+// the matrix and the numeric factor are freed after each solve, so that they and Newton's (its
+// factor freed at the end of each Newton solve) are never held together.
 #include <Eigen/Core>
 #include <memory>
 

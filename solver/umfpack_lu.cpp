@@ -193,6 +193,10 @@ void UmfpackLu::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   }
 }
 
+void UmfpackLu::release_numeric() {
+  umfpack_dl_free_numeric(&impl_->numeric);
+}
+
 bool UmfpackLu::analyzed() const {
   return impl_->symbolic != nullptr;
 }

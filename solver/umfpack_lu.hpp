@@ -52,6 +52,9 @@ class UmfpackLu {
   // refinement with a copy of the factorised matrix); throws std::logic_error when there is none,
   // std::runtime_error when UMFPACK fails.
   void solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  // Frees the numeric factorisation (L and U), keeping the symbolic analysis; solve() throws
+  // until the next factorize.
+  void release_numeric();
 
   bool analyzed() const;
   bool factorized() const;

@@ -114,6 +114,11 @@ TEST_F(SlowRunCli, SmallBarrelContractionWritesEveryResult) {
     EXPECT_TRUE(s.contains(key)) << key;
   for (const char* key : {"setup", "assembly", "factorisation", "solve", "output", "total"})
     EXPECT_TRUE(s["wall_seconds"][key].is_number()) << key;
+  // The process's peak memory (the CLI runs one scene: at least the program itself, 1 MiB) and
+  // the size of the Cholesky factor, which dominates it on fine meshes.
+  EXPECT_GT(s["peak_memory_mib"].get<double>(), 1.0);
+  EXPECT_GT(s["linear_solver_statistics"]["factor_nonzeros"].get<double>(),
+            static_cast<double>(s["dofs"].get<int>()));
   EXPECT_EQ(s["status"], "converged");
   EXPECT_EQ(s["discretisation"], "iga");
   EXPECT_EQ(s["degrees"], nlohmann::json::array({2, 2, 2}));

@@ -158,6 +158,49 @@ TEST(LinearSolver, IndefiniteMatrixFallsBackToLuAndStillSolves) {
   EXPECT_EQ(stats.failures, 0);
 }
 
+// Releasing the factorisation between uses (Newton's solver at the end of each solve, the
+// predictor's after its solve) frees the numeric factor and keeps the symbolic analysis: solve()
+// refuses until the next factorize, which needs no new analysis and gives the same solution,
+// bitwise, for Cholesky and for the LU fallback alike.
+TEST(LinearSolver, ReleasedFactorisationIsRefusedUntilTheNextAndChangesNothing) {
+  const testing::ElasticitySystem system = testing::make_elasticity({8, 1});
+  SparseMatrix indefinite = system.stiffness;
+  testing::shift_diagonal(indefinite, 0.5 * indefinite.diagonal().mean());
+  const Eigen::VectorXd b = random_vector(system.stiffness.rows(), 9);
+  LinearSolver solver;
+  for (const SparseMatrix* k : std::vector<const SparseMatrix*>{&system.stiffness, &indefinite}) {
+    ASSERT_TRUE(solver.factorize(*k).ok);
+    const LinearMethod method = solver.last_report().method;
+    Eigen::VectorXd before, after;
+    solver.solve(b, before);
+    solver.release_factorization();
+    EXPECT_FALSE(solver.cholesky().factorized());
+    EXPECT_FALSE(solver.lu().factorized());
+    EXPECT_TRUE(solver.cholesky().analyzed());
+    EXPECT_THROW(solver.solve(b, after), std::logic_error);
+    solver.release_factorization();  // twice is harmless
+    ASSERT_TRUE(solver.factorize(*k).ok);
+    EXPECT_EQ(solver.last_report().method, method);
+    solver.solve(b, after);
+    EXPECT_EQ(after, before);
+  }
+  EXPECT_EQ(solver.last_report().method, LinearMethod::Lu);
+  EXPECT_EQ(solver.statistics().symbolic_analyses, 1);
+  EXPECT_EQ(solver.statistics().lu_symbolic_analyses, 1);
+  // CHOLMOD alone: the symbolic factor left by the release is factorised again.
+  CholmodCholesky cholesky;
+  cholesky.analyze(system.stiffness);
+  ASSERT_TRUE(cholesky.factorize(system.stiffness).ok);
+  Eigen::VectorXd x1, x2;
+  cholesky.solve(b, x1);
+  cholesky.release_numeric();
+  EXPECT_FALSE(cholesky.factorized());
+  EXPECT_THROW(cholesky.solve(b, x2), std::logic_error);
+  ASSERT_TRUE(cholesky.factorize(system.stiffness).ok);
+  cholesky.solve(b, x2);
+  EXPECT_EQ(x1, x2);
+}
+
 // The shift response factorises K + tau mean|K_ii| I for the first tau of its sequence that makes
 // the matrix positive definite (the one before it does not), solves with that matrix, and starts
 // the next indefinite matrix one step of the sequence lower (Levenberg-Marquardt's relaxation).
