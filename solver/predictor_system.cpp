@@ -20,14 +20,15 @@ EvaluationStatus PredictorSystem::solve(MatrixStorage storage, const Eigen::Vect
     solver_ = std::make_unique<LinearSolver>(settings);
   }
   const FactorizationReport report = solver_->factorize(matrix_);
-  if (!report.ok)
-    return EvaluationStatus::failure("predictor: " + report.message);
-  solver_->solve(rhs, du);
+  if (report.ok)
+    solver_->solve(rhs, du);
   // Newton assembles and factorises its own tangent next: without this the run would hold two
   // factors and two matrices. The matrix is made again from the pattern at the next step (an
   // O(nnz) copy; the same pattern, so no new symbolic analysis).
   solver_->release_factorization();
   matrix_ = SparseMatrix();
+  if (!report.ok)
+    return EvaluationStatus::failure("predictor: " + report.message);
   if (!du.allFinite())
     return EvaluationStatus::failure("predictor: non-finite increment");
   return EvaluationStatus::success();
