@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The DAO's anterior y on IGA and tetrahedral meshes (validation/suite/README.md, 2026-12-04).
 
-Runs copies of examples/dao/contract.toml (IGA, `knot_insertion` changed) and contract-tet.toml
+Runs copies of examples/dao/contract.toml (IGA, `knot_insertion` changed and, unless a mesh names
+its grading, the committed scene's graded knots along left out) and contract-tet.toml
 (`element_size` changed) with four more point probes on the mouth-corner end face, at half its
 semi-axes (+-1.5 mm across the width, +-1 mm across the thickness from the centre (4, 2, 34) mm),
 and writes OUT/dao_mesh_study.md with these tables:
@@ -22,20 +23,31 @@ and writes OUT/dao_mesh_study.md with these tables:
   there (summary.json's stability).
 
 Usage: /usr/bin/python3 validation/suite/dao_mesh_study.py [--out OUT] [--jobs N] [--reuse]
-       [--meshes iga:3,15,7 iga:3,15,3:1,0,2 tet:0.00075 tet:0.00075:v0,0.0003,0.002 grid:4,8,8 ...]
-       [--jaw clamped|sliding] [--indefinite-tangent lu|shift|cut] [--stall-iterations N]
+       [--meshes iga:3,15,7 iga:3,15,3:1,0,2 iga:3,15,3::1536 tet:0.00075
+                 tet:0.00075:v0,0.0003,0.002 grid:4,8,8 ...]
+       [--jaw clamped|sliding|elastic] [--jaw-stiffness K] [--end T]
+       [--indefinite-tangent lu|shift|cut] [--stall-iterations N]
        [--material KEY=VALUE ...] [--constant-fibres X Y Z] [--continuity C]
        [--tet-quadrature DEGREE]
-A mesh is iga:KNOT_INSERTION[:DEGREE_ELEVATION], tet:ELEMENT_SIZE[:FACE,SIZE,DISTANCE] (one
+A mesh is iga:KNOT_INSERTION[:DEGREE_ELEVATION[:GRADED]], tet:ELEMENT_SIZE[:FACE,SIZE,DISTANCE] (one
 [[tetrahedra.refine]]) or grid:AROUND,ALONG,RADIAL (10-node tetrahedra cut from the shrink
 solid's parametric grid with that many cells per knot span of the unrefined solid, 4 x 3 x 1
 spans: structured_tet_mesh.py; grid:4,4,4 has the cells of IGA level 1, grid:4,8,8 of level 2);
-the scene's own values where a part is left out.
+the scene's own values where a part is left out. GRADED = N grades the IGA spans along the muscle
+towards the jaw face: knots at 1/(2n), 1/(4n), ... down to 1/N of v are added to the n uniform
+spans along (n = 3 (k + 1) for the knot insertion k along; iga:3,15,3::1536 puts 1/96 ... 1/1536
+into 48 spans), so the first span is 1/N (a power-of-two fraction of 1/n) and each next one twice
+as long; the names end in _gN.
 The default meshes are those of the README table (about 3 h on one core; --jobs 2 halves it).
 --jaw sliding replaces the clamped jaw face by one held only along z (free to move in x and y, so
 free to widen as the fibres next to it shorten) and two point constraints against the rigid
 motions left: x and y at the face's centre, y at the end of its major axis (the stand-in's section
 frame, below); the scenes and runs are named dao_sliding_*.
+--jaw elastic puts the jaw face on springs instead ([[boundary]] type = "elastic", README.md
+"Elastic supports"): a traction -K u per unit reference area, K = --jaw-stiffness (Pa/m, default
+1e8, about a 1 mm layer of a 100 kPa tissue; the 2026-12-07 section of validation/suite/README.md);
+the names start dao_elastic<K>_. IGA meshes only (tetrahedra refuse elastic supports).
+--end T runs to T seconds instead of 0.2 s (the report's tables then end at T).
 --indefinite-tangent and --stall-iterations set the [solver] keys of those names (README.md,
 "Solver"; the scenes' defaults lu and 4 when left out) and add _shift, _cut, _stall0 ... to the
 scene names; the report's last table is the Newton and linear-solver work of each run.
@@ -85,6 +97,11 @@ type = "fixed"
 components = ["y"]
 tolerance = %s
 """
+ELASTIC_JAW = """[[boundary]]
+face = "v0"                       # the jaw face, on springs
+type = "elastic"
+stiffness = %s
+"""
 HEIGHTS_MM = [2, 3, 5, 8, 12, 17, 22, 27, 31, 34]
 HISTORY_TIMES = [0.02, 0.05, 0.07, 0.09, 0.0975, 0.125, 0.15, 0.175, 0.2]
 WIDTH_HEIGHTS_MM = [3, 10, 15, 22]
@@ -120,12 +137,28 @@ def name_part(value):
 ISOCURVE_FIBRES = '[fibres]\nmode = "isocurve"\ndirection = "v"\n'
 
 
+def graded_knots(knot_insertion_along, first_span):
+    """Knots 1/(2n), 1/(4n), ... 1/first_span of v for the n uniform spans along of the knot
+    insertion (the stand-in's 3 spans along, each split k + 1 times)."""
+    n = 3 * (knot_insertion_along + 1)
+    if first_span < 2 * n or first_span % n or (first_span // n) & (first_span // n - 1):
+        raise SystemExit("dao_mesh_study: a graded first span of 1/%d is not 1/(2^m %d)" %
+                         (first_span, n))
+    knots, d = [], 2 * n
+    while d <= first_span:
+        knots.append(1.0 / d)
+        d *= 2
+    return sorted(knots)
+
+
 def scene(mesh, folder, exe, jaw="clamped", solver=(), material=(), fibre_vector=None,
-          continuity=None, tet_quadrature=None):
-    """Scene copy for 'iga:i,j,k[:a,b,c]' (knot insertion, degree elevation),
+          continuity=None, tet_quadrature=None, stiffness="1e8", end=None):
+    """Scene copy for 'iga:i,j,k[:a,b,c[:N]]' (knot insertion, degree elevation, spans along
+    graded to a first one of 1/N),
     'tet:h[:face,size,distance]' (element size, m; one local refinement) or 'grid:a,b,c' (a
     mesh of the solid's own cells, written next to the scene with exe), with the jaw face
-    clamped (the committed scenes) or sliding (module doc), the [solver] keys of solver and the
+    clamped (the committed scenes), sliding or on springs of stiffness (Pa/m) (module doc), run
+    to end (s; the scene's 0.2 s when None), the [solver] keys of solver and the
     [material] parameters of material, each a sequence of (key, TOML value) pairs, and the
     NURBS isocurve fibres or, with fibre_vector, one constant fibre direction; IGA meshes with
     continuity set get [geometry.refine] continuity (0: C^0 element faces), tetrahedral meshes
@@ -138,14 +171,28 @@ def scene(mesh, folder, exe, jaw="clamped", solver=(), material=(), fibre_vector
     text = open(base).read().replace("../geometry/dao.igs",
                                      os.path.join(ROOT, "examples", "geometry", "dao.igs"))
     if kind == "iga":
+        # The committed scene's mesh is graded towards the jaw (its `knots` line, since
+        # 2026-12-07); the meshes here are uniform along unless GRADED is given, as they were
+        # when the README's tables were measured.
+        text, m = re.subn(r"(knot_insertion = \[[^\]]*\])[^\n]*(\n#[^\n]*)*\nknots = \{[^\n]*\}",
+                          lambda g: g.group(1), text)
+        if m != 1:
+            raise SystemExit("dao_mesh_study: no knots line to replace in %s" % base)
         # The line's own comment stays on it; continuity, when set, goes on the next line.
         text, n = re.subn(r"knot_insertion = \[[^\]]*\]([^\n]*)", lambda m: (
             "knot_insertion = [%s]%s" % (value.replace(",", ", "), m.group(1)) +
             ("" if continuity is None else "\ncontinuity = %d" % continuity)), text)
-        if extra:
+        if extra and extra[0]:
             text, m = re.subn(r"degree_elevation = \[[^\]]*\]", "degree_elevation = [%s]" %
                               extra[0].replace(",", ", "), text)
             n = min(n, m)
+        if len(extra) == 2:
+            # The explicit knots go on the line after the knot insertion's (and continuity's).
+            knots = graded_knots(int(value.split(",")[1]), int(extra[1]))
+            text, m = re.subn(r"(knot_insertion = [^\n]*(\ncontinuity = [0-9]+)?)", lambda g: (
+                g.group(1) + "\nknots = { v = [%s] }" % ", ".join(repr(x) for x in knots)), text)
+            n = min(n, m)
+            extra = extra[:1]
     elif kind == "grid":
         # 10-node tetrahedra cut from the solid's parametric grid (structured_tet_mesh.py).
         msh = os.path.join(folder, "dao_grid_%s.msh" % value.replace(",", "_"))
@@ -165,12 +212,21 @@ def scene(mesh, folder, exe, jaw="clamped", solver=(), material=(), fibre_vector
                             tet_quadrature)
         if "quadrature_degree" not in text:
             raise SystemExit("dao_mesh_study: no [tetrahedra] table in %s" % base)
+    if jaw != "clamped" and CLAMPED_JAW not in text:
+        raise SystemExit("dao_mesh_study: no clamped jaw face to replace in %s" % base)
     if jaw == "sliding":
-        if CLAMPED_JAW not in text:
-            raise SystemExit("dao_mesh_study: no clamped jaw face to replace in %s" % base)
         tolerance = "1e-06" if kind == "iga" else "0.0004"
         text = text.replace(CLAMPED_JAW, SLIDING_JAW % (tolerance, *jaw_major_axis_end(), tolerance))
-    text = re.sub(r"times = \[[^\]]*\]", "times = [0.2]", text)
+    elif jaw == "elastic":
+        if kind != "iga":
+            raise SystemExit("dao_mesh_study: mesh '%s': elastic supports are for NURBS solids "
+                             "only (IGA meshes)" % mesh)
+        text = text.replace(CLAMPED_JAW, ELASTIC_JAW % stiffness)
+    if end is not None:
+        text, n = re.subn(r"\nend = [0-9.e-]+", "\nend = %s" % end, text)
+        if n != 1:
+            raise SystemExit("dao_mesh_study: no [time] end to set in %s" % base)
+    text = re.sub(r"times = \[[^\]]*\]", "times = [%s]" % (end or "0.2"), text)
     if "\n[solver]\n" not in text:
         raise SystemExit("dao_mesh_study: no [solver] table in %s" % base)
     text = text.replace("\n[solver]\n", "\n[solver]\n" + "".join(
@@ -198,8 +254,11 @@ def scene(mesh, folder, exe, jaw="clamped", solver=(), material=(), fibre_vector
         suffix += "_q%d" % tet_quadrature
     if fibre_vector is not None:
         suffix += "_fibre_" + "_".join(name_part("%g" % c) for c in fibre_vector)
-    path = os.path.join(folder, "dao_%s%s%s.toml" % ("sliding_" if jaw == "sliding" else "",
-                                                       re.sub(r"[:,]", "_", mesh), suffix))
+    if end is not None:
+        suffix += "_end" + name_part(end)
+    prefix = {"clamped": "", "sliding": "sliding_", "elastic": "elastic%s_" % name_part(stiffness)}
+    path = os.path.join(folder, "dao_%s%s%s.toml" % (prefix[jaw], re.sub(
+        r"[:,]", "_", mesh.replace("::", ":").rstrip(":")), suffix))
     with open(path, "w") as f:
         f.write(text)
     return path
@@ -275,7 +334,10 @@ def main():
     parser.add_argument("--jobs", type=int, default=1)
     parser.add_argument("--reuse", action="store_true")
     parser.add_argument("--meshes", nargs="+", default=DEFAULT_MESHES)
-    parser.add_argument("--jaw", choices=["clamped", "sliding"], default="clamped")
+    parser.add_argument("--jaw", choices=["clamped", "sliding", "elastic"], default="clamped")
+    parser.add_argument("--jaw-stiffness", default="1e8", metavar="K",
+                        help="--jaw elastic: the springs' stiffness per unit area, Pa/m")
+    parser.add_argument("--end", metavar="T", help="run to T seconds instead of 0.2 s")
     parser.add_argument("--indefinite-tangent", choices=["lu", "shift", "cut"])
     parser.add_argument("--stall-iterations", type=int)
     parser.add_argument("--material", nargs="+", default=[], metavar="KEY=VALUE",
@@ -301,8 +363,12 @@ def main():
     if args.stall_iterations is not None:
         solver.append(("stall_iterations", str(args.stall_iterations)))
     os.makedirs(args.out, exist_ok=True)
+    for value in (args.jaw_stiffness, args.end):
+        if value is not None and not re.fullmatch(r"[0-9.]+(e[+-]?[0-9]+)?", value):
+            parser.error("'%s' is not a positive number" % value)
     paths = {m: scene(m, args.out, args.exe, args.jaw, solver, material, args.constant_fibres,
-                      args.continuity, args.tet_quadrature) for m in args.meshes}
+                      args.continuity, args.tet_quadrature, args.jaw_stiffness, args.end)
+             for m in args.meshes}
     dirs = {m: os.path.splitext(p)[0] for m, p in paths.items()}
     with concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
         results = dict(zip(args.meshes, pool.map(
@@ -378,7 +444,9 @@ def main():
         width += ["| %s | " % m + " | ".join(width_uy(dirs[m], h)) + " |" for m in args.meshes]
     report = os.path.join(args.out, "dao_mesh_study.md")
     with open(report, "w") as f:
-        f.write("# DAO mouth corner, y at 0.2 s (mm), jaw face %s\n\n" % args.jaw + "\n".join(lines) +
+        jaw = args.jaw + (" (%s Pa/m)" % args.jaw_stiffness if args.jaw == "elastic" else "")
+        f.write("# DAO mouth corner, y at %s s (mm), jaw face %s\n\n" % (args.end or "0.2", jaw) +
+                "\n".join(lines) +
                 "\n\n## u_y on the centreline (mm)\n\n" + "\n".join(profile) +
                 "\n\n## The end's y against time (mm)\n\n" + "\n".join(history) +
                 "\n\n## u_y across the width (mm; x bins in mm)\n" + "\n".join(width) +
