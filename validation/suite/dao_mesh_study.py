@@ -37,7 +37,7 @@ the scene's own values where a part is left out. GRADED = N grades the IGA spans
 towards the jaw face: knots at 1/(2n), 1/(4n), ... down to 1/N of v are added to the n uniform
 spans along (n = 3 (k + 1) for the knot insertion k along; iga:3,15,3::1536 puts 1/96 ... 1/1536
 into 48 spans), so the first span is 1/N (a power-of-two fraction of 1/n) and each next one twice
-as long; the names end in _gN.
+as long; N ends the scene and run names (dao_iga_3_15_3_1536).
 The default meshes are those of the README table (about 3 h on one core; --jobs 2 halves it).
 --jaw sliding replaces the clamped jaw face by one held only along z (free to move in x and y, so
 free to widen as the fibres next to it shorten) and two point constraints against the rigid
