@@ -65,7 +65,7 @@ import re
 
 import numpy as np
 
-from run_suite import ROOT, fields_last_step, run
+from run_suite import EXAMPLES, ROOT, fields_last_step, run
 from structured_tet_mesh import structured_mesh
 
 DEFAULT_MESHES = ["iga:3,1,1", "iga:3,3,3", "iga:3,7,7", "iga:3,7,15", "iga:3,15,7", "iga:3,15,15",
@@ -102,6 +102,8 @@ face = "v0"                       # the jaw face, on springs
 type = "elastic"
 stiffness = %s
 """
+# The stand-in's uniform knot spans along before refinement, as the suite reads them.
+SPANS_ALONG = next(e for e in EXAMPLES if e["name"] == "dao")["base_spans"]["v"]
 HEIGHTS_MM = [2, 3, 5, 8, 12, 17, 22, 27, 31, 34]
 HISTORY_TIMES = [0.02, 0.05, 0.07, 0.09, 0.0975, 0.125, 0.15, 0.175, 0.2]
 WIDTH_HEIGHTS_MM = [3, 10, 15, 22]
@@ -139,8 +141,8 @@ ISOCURVE_FIBRES = '[fibres]\nmode = "isocurve"\ndirection = "v"\n'
 
 def graded_knots(knot_insertion_along, first_span):
     """Knots 1/(2n), 1/(4n), ... 1/first_span of v for the n uniform spans along of the knot
-    insertion (the stand-in's 3 spans along, each split k + 1 times)."""
-    n = 3 * (knot_insertion_along + 1)
+    insertion (the stand-in's SPANS_ALONG spans along, each split k + 1 times)."""
+    n = SPANS_ALONG * (knot_insertion_along + 1)
     if first_span < 2 * n or first_span % n or (first_span // n) & (first_span // n - 1):
         raise SystemExit("dao_mesh_study: a graded first span of 1/%d is not 1/(2^m %d)" %
                          (first_span, n))
