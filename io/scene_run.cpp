@@ -346,6 +346,9 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   std::string failure;
   std::optional<solver::TimeStepper> stepper;
   solver::TimeStepperResult stepped;
+  // The cuts as they happen: a stop or an error thrown from a step's callback leaves `stepped`
+  // unreturned, and the summary must still list the cuts before it.
+  std::vector<solver::StepCut> cuts;
   try {
     const solver::NewtonSettings newton = newton_settings(scene.solver, *model);
     stepper.emplace(stepper_settings(scene.time, out_times), newton);
@@ -421,6 +424,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
     };
     const auto on_cut = [&](const solver::StepCut& cut, const solver::NewtonResult& n) {
       ScopedSeconds timer(wall.output);
+      cuts.push_back(cut);
       write_newton_rows(steps + 1, cut.time + cut.dt, cut.dt, n, false);
     };
     const auto on_step = [&](const solver::StepInfo& info, const Eigen::VectorXd&) {
@@ -501,7 +505,7 @@ RunResult run_scene(const Scene& scene, const RunOptions& options) {
   // ---- Summary: statistics, timings, key results of the last converged state. ----
   result.time_reached = model->committed_time();
   s.steps = static_cast<std::size_t>(steps);
-  for (const solver::StepCut& c : stepped.cuts) {
+  for (const solver::StepCut& c : cuts) {
     s.step_cuts.push_back(StepCut{c.time, c.dt, c.next_dt, c.reason});
   }
   if (stepper) {

@@ -21,6 +21,8 @@
 #include "cli_support.hpp"
 #include "geometry/iges.hpp"
 #include "io/run_summary.hpp"
+#include "io/scene_loader.hpp"
+#include "io/scene_run.hpp"
 
 namespace isomuscle {
 namespace {
@@ -379,6 +381,36 @@ TEST_F(RunCli, SignalStopsTheRunAndKeepsTheConvergedSteps) {
   EXPECT_LT(s["time"]["reached"].get<double>(), 2.0);
   EXPECT_EQ(read_csv(out / "probes.csv").rows.size(), static_cast<std::size_t>(steps));
   EXPECT_TRUE(fs::exists(out / "solution.h5"));
+}
+
+// A run stopped after step cuts (RunOptions::stop_requested, what the CLI's SIGINT and SIGTERM
+// handler sets) keeps them in summary.json. The stop is thrown from the step callback, so the
+// time stepper never returns its result; the summary listed no cuts then (2026-12-07: a DAO run
+// interrupted after 15 cuts reported none). The scene is FixedStepGrowsBackToDtAfterACut's, its
+// first cut at t = 0.3 s; the run stops at the first step that converges after a cut.
+TEST_F(RunCli, StoppedRunKeepsItsStepCutsInTheSummary) {
+  const fs::path path =
+      write("stopped_after_cuts.toml",
+            barrel_scene("[material]\nmodel = \"lu2010\"\n[material.parameters]\nn2 = 0.0\n",
+                         "[[boundary]]\nface = \"v1\"\ntype = \"displacement\"\n"
+                         "velocity = [0.0, 0.0, 0.05]\nstart = 0.3\n",
+                         "end = 1.0\ndt = 0.1\nadaptive = false\n", "newton_max_iterations = 3\n"));
+  io::RunOptions options;
+  options.out_dir = dir_ / "stopped_after_cuts";
+  options.threads = 1;
+  int cuts_seen = 0;
+  options.progress = [&](const io::RunProgress& p) { cuts_seen = p.step_cuts; };
+  options.stop_requested = [&] { return cuts_seen > 0; };
+  const io::RunResult r = io::run_scene(io::load_scene(path), options);
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.failure_reason.find("interrupted"), std::string::npos) << r.failure_reason;
+  EXPECT_LT(r.time_reached, 1.0);
+  ASSERT_GE(cuts_seen, 1);
+  EXPECT_EQ(r.summary.step_cuts.size(), static_cast<std::size_t>(cuts_seen));
+  const nlohmann::json s = summary(options.out_dir);
+  EXPECT_EQ(s["step_cuts"].size(), static_cast<std::size_t>(cuts_seen));
+  for (const auto& cut : s["step_cuts"])
+    EXPECT_NEAR(cut["time"].get<double>(), 0.3, 1e-9);  // every cut is of the step from 0.3 s
 }
 
 // adaptive = false: steps of dt, but a step that fails is cut back and the step then grows back
