@@ -391,9 +391,21 @@ def sequences(ex):
     return [(ex["refine"], "")] + [(d, "-" + d) for d in ex.get("refine_each", "")]
 
 
+def level_key(level, tag):
+    """(level, tag) as results are keyed: level 0 is the committed scene, shared by every
+    sequence, so its tag is always ""."""
+    return level, tag if level > 0 else ""
+
+
 def level_result(results, name, label, level, tag):
-    """The run of a sequence's level; level 0 is the committed scene, shared by every sequence."""
-    return results[(name, label, level, tag if level > 0 else "")]
+    """The run of a sequence's level."""
+    return results[(name, label) + level_key(level, tag)]
+
+
+def sequence_text(tag, template):
+    """template % the refined direction in a one-direction sequence (" (%s only)" in a table,
+    ", %s only" in a check's claim); "" for the levels along `refine`."""
+    return template % tag[1:] if tag else ""
 
 
 def level_name(level, only):
@@ -457,7 +469,7 @@ def report(args, examples, results, rows):
                   (" | change L%d→L%d |" % (levels[-2], levels[-1]) if len(levels) > 1 else " |"),
                   "|---|---|" + "---|" * len(levels) + ("---|" if len(levels) > 1 else "")]
         for directions, tag in sequences(ex):
-            only = " (%s only)" % tag[1:] if tag else ""
+            only = sequence_text(tag, " (%s only)")
             for label in ex["scenes"]:
                 runs = [level_result(results, name, label, l, tag) for l in levels]
                 for h in ex["headline"]:
@@ -474,7 +486,7 @@ def report(args, examples, results, rows):
                                     if r["summary"].get("stability", {}).get("unstable_steps")]
                         checks.append(("%s %s %s converged to 1 %% (L%d→L%d%s)" %
                                        (name, label, h, levels[-2], levels[-1],
-                                        only.replace(" (", ", ")[:-1]),
+                                        sequence_text(tag, ", %s only")),
                                        change < 0.01, "%.2f %%" % (100 * change) +
                                        ("; " + ", ".join(unstable) if unstable else "")))
         lines.append("")
@@ -526,7 +538,7 @@ def report(args, examples, results, rows):
                 cosang = sum(a_ * b_ for a_, b_ in zip(js["end"], jn["end"])) / (
                     norm(js["end"]) * norm(jn["end"]))
                 angle = math.degrees(math.acos(max(-1.0, min(1.0, cosang))))
-                measures[(l, tag)] = (drift, js["dent"])
+                measures[level_key(l, tag)] = (drift, js["dent"])
                 for lab, j, d, ang in [("nurbs", jn, 0.0, 0.0), ("segments", js, drift, angle)]:
                     lines.append("| %s | %s | (%s) | %.3f | %+.4f | %.1f %% | %.1f° |" % (
                         level_name(l, tag[1:]), lab, ", ".join("%+.3f" % (1e3 * x) for x in j["end"]),
@@ -539,12 +551,11 @@ def report(args, examples, results, rows):
                                 "%+.4f vs %+.4f mm" % (1e3 * js["dent"], 1e3 * jn["dent"]))]
             # The drift and the dent are reported quantities too: converged like the headline.
             for _, tag in sequences(ex) if len(levels) > 1 else []:
-                only = " (%s only)" % tag[1:] if tag else ""
                 for i, what in enumerate(["drift vs NURBS", "segments' dent at the joint"]):
-                    a_, b_ = (measures[(l, tag if l > 0 else "")][i] for l in levels[-2:])
+                    a_, b_ = (measures[level_key(l, tag)][i] for l in levels[-2:])
                     change = relative_change(a_, b_)
                     checks.append(("%s %s converged to 1 %% (L%d→L%d%s)" % (
-                        name, what, levels[-2], levels[-1], only.replace(" (", ", ")[:-1]),
+                        name, what, levels[-2], levels[-1], sequence_text(tag, ", %s only")),
                         change < 0.01,
                         "%.2f %%" % (100 * change)))
             lines.append("")
