@@ -52,6 +52,16 @@ std::string barrel_scene(const std::string& material, const std::string& boundar
          time + "\n[solver]\nthreads = 1\n" + extra;
 }
 
+// The barrel pulled from t = 0.3 s in fixed 0.1 s steps with 3 Newton iterations allowed: the
+// steps from 0.3 s are cut (FixedStepGrowsBackToDtAfterACut,
+// StoppedRunKeepsItsStepCutsInTheSummary).
+std::string fixed_step_scene() {
+  return barrel_scene("[material]\nmodel = \"lu2010\"\n[material.parameters]\nn2 = 0.0\n",
+                      "[[boundary]]\nface = \"v1\"\ntype = \"displacement\"\n"
+                      "velocity = [0.0, 0.0, 0.05]\nstart = 0.3\n",
+                      "end = 1.0\ndt = 0.1\nadaptive = false\n", "newton_max_iterations = 3\n");
+}
+
 class RunCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -389,12 +399,7 @@ TEST_F(RunCli, SignalStopsTheRunAndKeepsTheConvergedSteps) {
 // interrupted after 15 cuts reported none). The scene is FixedStepGrowsBackToDtAfterACut's, its
 // first cut at t = 0.3 s; the run stops at the first step that converges after a cut.
 TEST_F(RunCli, StoppedRunKeepsItsStepCutsInTheSummary) {
-  const fs::path path =
-      write("stopped_after_cuts.toml",
-            barrel_scene("[material]\nmodel = \"lu2010\"\n[material.parameters]\nn2 = 0.0\n",
-                         "[[boundary]]\nface = \"v1\"\ntype = \"displacement\"\n"
-                         "velocity = [0.0, 0.0, 0.05]\nstart = 0.3\n",
-                         "end = 1.0\ndt = 0.1\nadaptive = false\n", "newton_max_iterations = 3\n"));
+  const fs::path path = write("stopped_after_cuts.toml", fixed_step_scene());
   io::RunOptions options;
   options.out_dir = dir_ / "stopped_after_cuts";
   options.threads = 1;
@@ -420,12 +425,7 @@ TEST_F(RunCli, StoppedRunKeepsItsStepCutsInTheSummary) {
 // until the held steps before 0.3 s were predicted instead of extrapolated, 2026-12-03; since then
 // 4 iterations need only two cuts, too few to show the regrowth.)
 TEST_F(RunCli, FixedStepGrowsBackToDtAfterACut) {
-  const fs::path scene =
-      write("fixed_dt.toml",
-            barrel_scene("[material]\nmodel = \"lu2010\"\n[material.parameters]\nn2 = 0.0\n",
-                         "[[boundary]]\nface = \"v1\"\ntype = \"displacement\"\n"
-                         "velocity = [0.0, 0.0, 0.05]\nstart = 0.3\n",
-                         "end = 1.0\ndt = 0.1\nadaptive = false\n", "newton_max_iterations = 3\n"));
+  const fs::path scene = write("fixed_dt.toml", fixed_step_scene());
   const fs::path out = dir_ / "fixed_dt";
   const CliResult r = run("run " + scene.string() + " --out " + out.string());
   ASSERT_EQ(r.code, 0) << r.err;
