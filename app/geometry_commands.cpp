@@ -23,6 +23,7 @@
 #include "geometry/coincident_points.hpp"
 #include "geometry/fibre_field.hpp"
 #include "geometry/iges.hpp"
+#include "geometry/parametric_skew.hpp"
 #include "geometry/shapes.hpp"
 #include "geometry/shrink.hpp"
 #include "geometry/volume_measures.hpp"
@@ -239,6 +240,11 @@ void run_solid(const SolidArgs& args) {
   const geo::VolumeEstimate estimate = geo::converged_solid_volume(volume);
   const geo::CoincidentPoints coincident = geo::find_coincident_points(volume);
   const geo::JacobianRange range = geo::jacobian_range(volume, kJacobianSamplesPerSpan);
+  const geo::ParametricSkew skew = geo::parametric_skew(volume, kJacobianSamplesPerSpan);
+  json skew_shares = json::object();
+  for (std::size_t k = 0; k < geo::kSkewThresholdsDeg.size(); ++k)
+    skew_shares[std::to_string(static_cast<int>(geo::kSkewThresholdsDeg[k]))] =
+        skew.volume_share_below[k];
   const std::string sampling =
       "det J at cell-centred " + std::to_string(kJacobianSamplesPerSpan) + "x" +
       std::to_string(kJacobianSamplesPerSpan) + "x" + std::to_string(kJacobianSamplesPerSpan) +
@@ -261,7 +267,11 @@ void run_solid(const SolidArgs& args) {
               {"max_jacobian_at", vector_json(range.argmax)},
               {"jacobian_samples", range.samples},
               {"non_positive_jacobian_samples", range.non_positive},
-              {"jacobian_sampling", sampling}};
+              {"jacobian_sampling", sampling},
+              {"min_parametric_angle_deg", skew.min_angle_deg},
+              {"min_parametric_angle_at", vector_json(skew.argmin)},
+              {"min_parametric_angle_between", skew.between},
+              {"volume_share_parametric_angle_below_deg", skew_shares}};
   if (!args.vtk.empty()) {
     write_vtk(args.vtk, volume, args.vtk_divisions,
               "isomuscle shrink solid of " + args.file + " surface " +
@@ -280,7 +290,13 @@ void run_solid(const SolidArgs& args) {
               << "  volume " << estimate.volume << " m^3 (" << estimate.points_per_direction
               << " Gauss points per direction, last change " << estimate.relative_change << ")\n"
               << "  det J in [" << range.min << ", " << range.max << "] m^3 (" << range.non_positive
-              << " of " << range.samples << " samples <= 0; " << sampling << ")\n";
+              << " of " << range.samples << " samples <= 0; " << sampling << ")\n"
+              << std::setprecision(3) << "  parametric directions meet at >= " << skew.min_angle_deg
+              << " degrees (" << skew.between << ", at (u, v, w) = (" << skew.argmin.x() << ", "
+              << skew.argmin.y() << ", " << skew.argmin.z()
+              << ")); volume share below 15 / 30 / 45 degrees: " << 100 * skew.volume_share_below[0]
+              << " / " << 100 * skew.volume_share_below[1] << " / "
+              << 100 * skew.volume_share_below[2] << " % (every refinement keeps these angles)\n";
     if (!args.vtk.empty())
       std::cout << "  wrote " << args.vtk << "\n";
   }

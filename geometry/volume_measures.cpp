@@ -138,21 +138,22 @@ VolumeEstimate converged_solid_volume(const NurbsVolume& volume, double relative
   return estimate;
 }
 
-JacobianRange jacobian_range(const NurbsVolume& volume, int samples_per_span) {
+void for_each_cell_sample(const NurbsVolume& volume, int samples_per_span, const char* what,
+                          const CellSampleVisitor& visit) {
   if (samples_per_span < 1 || samples_per_span > 100) {
-    throw std::invalid_argument("jacobian_range: " + std::to_string(samples_per_span) +
+    throw std::invalid_argument(std::string(what) + ": " + std::to_string(samples_per_span) +
                                 " samples per span; use 1..100");
   }
   const auto breaks = all_breakpoints(volume);
   const int s = samples_per_span;
-  JacobianRange range;
-  range.min = std::numeric_limits<double>::infinity();
-  range.max = -std::numeric_limits<double>::infinity();
   Eigen::Vector3d point;
   Eigen::Matrix3d jacobian;
   for (std::size_t e2 = 0; e2 + 1 < breaks[2].size(); ++e2) {
     for (std::size_t e1 = 0; e1 + 1 < breaks[1].size(); ++e1) {
       for (std::size_t e0 = 0; e0 + 1 < breaks[0].size(); ++e0) {
+        const double cell = (breaks[0][e0 + 1] - breaks[0][e0]) *
+                            (breaks[1][e1 + 1] - breaks[1][e1]) *
+                            (breaks[2][e2 + 1] - breaks[2][e2]) / (s * s * s);
         for (int c = 0; c < s; ++c) {
           for (int b = 0; b < s; ++b) {
             for (int a = 0; a < s; ++a) {
@@ -162,24 +163,34 @@ JacobianRange jacobian_range(const NurbsVolume& volume, int samples_per_span) {
               const Eigen::Vector3d xi(at(breaks[0], e0, a), at(breaks[1], e1, b),
                                        at(breaks[2], e2, c));
               volume.evaluate_with_jacobian(xi, point, jacobian);
-              const double det = jacobian.determinant();
-              ++range.samples;
-              if (!(det > 0.0))
-                ++range.non_positive;
-              if (det < range.min) {
-                range.min = det;
-                range.argmin = xi;
-              }
-              if (det > range.max) {
-                range.max = det;
-                range.argmax = xi;
-              }
+              visit(xi, jacobian, cell);
             }
           }
         }
       }
     }
   }
+}
+
+JacobianRange jacobian_range(const NurbsVolume& volume, int samples_per_span) {
+  JacobianRange range;
+  range.min = std::numeric_limits<double>::infinity();
+  range.max = -std::numeric_limits<double>::infinity();
+  for_each_cell_sample(volume, samples_per_span, "jacobian_range",
+                       [&](const Eigen::Vector3d& xi, const Eigen::Matrix3d& jacobian, double) {
+                         const double det = jacobian.determinant();
+                         ++range.samples;
+                         if (!(det > 0.0))
+                           ++range.non_positive;
+                         if (det < range.min) {
+                           range.min = det;
+                           range.argmin = xi;
+                         }
+                         if (det > range.max) {
+                           range.max = det;
+                           range.argmax = xi;
+                         }
+                       });
   return range;
 }
 

@@ -4,6 +4,7 @@
 // theorem (an independent check), and the range of det J on a sampling grid. Used to validate
 // shrink solids against closed forms and by `isomuscle geometry solid`.
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "geometry/gauss_legendre.hpp"
@@ -45,5 +46,14 @@ struct JacobianRange {
 // (k + 1/2) / samples_per_span of each span, k = 0..samples_per_span-1. No sample lies on a span
 // boundary, so none lies on the collapsed axis w = 1 of a shrink solid (where det J = 0).
 JacobianRange jacobian_range(const NurbsVolume& volume, int samples_per_span);
+
+// The sampling grid of jacobian_range, for other pointwise measures of the map: visit(xi, J,
+// cell) at every sample, cell = the parametric volume of the sample's cell (sum over all samples =
+// the parametric box's volume), so that det J * cell weights a sample by the volume it stands
+// for. Throws std::invalid_argument naming `what` unless 1 <= samples_per_span <= 100.
+using CellSampleVisitor =
+    std::function<void(const Eigen::Vector3d& xi, const Eigen::Matrix3d& jacobian, double cell)>;
+void for_each_cell_sample(const NurbsVolume& volume, int samples_per_span, const char* what,
+                          const CellSampleVisitor& visit);
 
 }  // namespace isomuscle::geometry

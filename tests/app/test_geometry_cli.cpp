@@ -77,6 +77,18 @@ TEST_F(GeometryCli, SolidOfEachExampleHasTheExpectedVolume) {
   EXPECT_EQ(cone["closed_direction"], "u");
 }
 
+// The report names how far the parametric directions are from right angles: the DAO's flat
+// section skews them (between around and radial, near the jaw), the barrel's circles do not.
+TEST_F(GeometryCli, SolidReportsTheParametricSkew) {
+  const nlohmann::json dao = solid_json(example("dao"));
+  EXPECT_LT(dao["min_parametric_angle_deg"].get<double>(), 10.0);
+  EXPECT_EQ(dao["min_parametric_angle_between"], "u-w");
+  EXPECT_GT(dao["volume_share_parametric_angle_below_deg"]["15"].get<double>(), 0.1);
+  const nlohmann::json barrel = solid_json(example("barrel"));
+  EXPECT_GT(barrel["min_parametric_angle_deg"].get<double>(), 60.0);
+  EXPECT_EQ(barrel["volume_share_parametric_angle_below_deg"]["45"].get<double>(), 0.0);
+}
+
 // A file closed in v (centreline along u) gives the same solid with --centreline u.
 TEST_F(GeometryCli, CentrelineAlongUForASurfaceClosedInV) {
   const geometry::NurbsSurface barrel = geometry::barrel(0.05, 0.0045, 0.00875);
