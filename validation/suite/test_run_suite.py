@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Checks of run_suite.py's refinement levels on the committed scenes (ctest RunSuite.*): which
 knots each level's scene copy gets. The suite's convergence checks are only as good as these
-meshes, and a level that silently kept the committed mesh would report a change of zero.
+meshes, and a level that silently kept the committed mesh would report a change of zero. Also
+the report's Richardson estimate of the finest level's error.
 
 Usage: /usr/bin/python3 validation/suite/test_run_suite.py (unittest; no isomuscle run)
 """
@@ -90,10 +91,63 @@ class SceneVariants(unittest.TestCase):
         self.assertAlmostEqual(spans(knots1["v"])[0], committed[0] / 2, delta=1e-15)
 
     def test_uniform_directions_double_their_insertion(self):
-        _, (k, knots) = self.variant("torus", 2, "vw")
-        self.assertEqual(k, [1, 31, 7])
+        # The torus refines all three directions together: 4 x 8 x 2 spans, then 16 x 32 x 8.
+        self.assertEqual(run_suite.sequences(example("torus")), [("uvw", "")])
+        _, (k, knots) = self.variant("torus", 2, "uvw")
+        self.assertEqual(k, [7, 31, 7])
         self.assertEqual(knots, {})
-        self.assertEqual(run_suite.sequences(example("torus")), [("vw", "")])
+
+    def test_half_torus_refines_around_alone_too(self):
+        self.assertEqual(run_suite.sequences(example("half_torus")), [("vw", ""), ("u", "-u")])
+        for level, expected in [(1, [1, 3, 1]), (2, [3, 3, 1])]:
+            path, (k, _) = self.variant("half_torus", level, "u", "-u")
+            self.assertEqual(k, expected)  # 8, then 16 around; along and radial as committed
+            self.assertTrue(path.endswith("half_torus_contract-L%d-u.toml" % level))
+
+
+class Richardson(unittest.TestCase):
+    """The finest level's error estimate of the report (run_suite.richardson)."""
+
+    def test_first_order_sequence_extrapolates_to_its_limit(self):
+        limit, c = 0.9, 0.04
+        values = [limit + c, limit + c / 2, limit + c / 4]
+        e = run_suite.richardson(values)
+        self.assertAlmostEqual(e["ratio"], 0.5, delta=1e-12)
+        self.assertAlmostEqual(e["order"], 1.0, delta=1e-12)
+        self.assertAlmostEqual(e["limit"], limit, delta=1e-12)
+        self.assertAlmostEqual(e["error"], (c / 4) / (limit + c / 4), delta=1e-12)
+
+    def test_second_order_sequence_has_order_two(self):
+        values = [2.0 - 1.0, 2.0 - 0.25, 2.0 - 0.0625, 2.0 - 0.015625]
+        e = run_suite.richardson(values)  # the last three
+        self.assertAlmostEqual(e["ratio"], 0.25, delta=1e-12)
+        self.assertAlmostEqual(e["order"], 2.0, delta=1e-12)
+        self.assertAlmostEqual(e["limit"], 2.0, delta=1e-12)
+
+    def test_dao_radial_levels_of_the_eleventh_session(self):
+        # The NURBS end y (mm) at 4 / 8 / 16 radial spans: the suite README's extrapolated
+        # +0.907 mm, 1.3 % from the 16-span run.
+        e = run_suite.richardson([0.9530, 0.9299, 0.9184])
+        self.assertAlmostEqual(e["limit"], 0.907, delta=5e-4)
+        self.assertAlmostEqual(e["error"], 0.0125, delta=5e-4)
+
+    def test_no_estimate_without_a_shrinking_monotone_change(self):
+        oscillating = run_suite.richardson([1.0, 1.1, 1.05])
+        self.assertLess(oscillating["ratio"], 0.0)
+        self.assertNotIn("error", oscillating)
+        growing = run_suite.richardson([1.0, 1.1, 1.3])
+        self.assertGreater(growing["ratio"], 1.0)
+        self.assertNotIn("error", growing)
+        self.assertEqual(run_suite.estimate_text([1.0, 1.1, 1.3]), "")
+        self.assertIsNone(run_suite.richardson([1.0, 1.1]))
+        self.assertIsNone(run_suite.richardson([1.0, float("nan"), 1.1]))
+        self.assertIsNone(run_suite.richardson([1.0, 1.0, 1.0]))
+        self.assertEqual(run_suite.richardson_text([1.0, 1.0, 1.0]), "-")
+
+    def test_report_texts(self):
+        self.assertEqual(run_suite.richardson_text([1.04, 1.02, 1.01]), "r 0.50, p 1.0, 0.99 %")
+        self.assertEqual(run_suite.estimate_text([1.04, 1.02, 1.01]),
+                         "; est. error of the finest 0.99 % (r 0.50)")
 
 
 if __name__ == "__main__":
