@@ -253,7 +253,7 @@ def richardson(values):
         return {"ratio": r}
     tail = (f2 - f1) * r / (1.0 - r)
     return {"ratio": r, "order": math.log2(1.0 / r), "limit": f2 + tail,
-            "error": abs(tail) / max(abs(f2), 1e-300)}
+            "error": relative_change(f2 + tail, f2)}
 
 
 def estimate_text(values):
