@@ -11,6 +11,7 @@
 #include "iga/pressure_space.hpp"
 #include "iga/quadrature_point_interpolation.hpp"
 #include "io/element_layer_check.hpp"
+#include "io/ellipticity_probe.hpp"
 #include "io/iga_surface_point.hpp"
 #include "io/setting_check.hpp"
 #include "io/surface_stability_check.hpp"
@@ -136,6 +137,10 @@ IgaProbes::IgaProbes(const std::vector<ProbeSettings>& probes, const IgaModel& m
         columns_.push_back(s.name);
         columns_.push_back(s.name + ".column");
         break;
+      case ProbeKind::material_ellipticity:
+        for (std::string& column : ellipticity_probe_columns(s.name))
+          columns_.push_back(std::move(column));
+        break;
       case ProbeKind::face_reaction:
         p.nodes = selected_nodes(model, *s.face, what);
         needs_force_ = true;
@@ -244,6 +249,10 @@ void IgaProbes::values(const iga::Problem& problem, std::vector<double>& out) co
       case ProbeKind::element_layer:
         out[p.first_column] = element_layer_value(problem, p.surface);
         out[p.first_column + 1] = element_column_value(problem, p.surface);
+        break;
+      case ProbeKind::material_ellipticity:
+        ellipticity_probe_values(committed_ellipticity_of(problem, kEllipticityProbeNormals),
+                                 std::span<double>(out).subspan(p.first_column, 5));
         break;
     }
   }

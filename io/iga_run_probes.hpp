@@ -26,6 +26,12 @@
 //                       <name>.column       the same for the body's own column of elements
 //                                           through the depth there, each at its state
 //                                           (io/element_column_check.hpp)
+//   material_ellipticity <name>, <name>.not_elliptic, <name>.x|y|z
+//                                           the law's smallest isochoric wave stiffness over
+//                                           every quadrature point (Pa), how many points have
+//                                           it <= 0 (a material instability: shear band, fold)
+//                                           and the smallest's reference position, m
+//                                           (io/ellipticity_probe.hpp)
 //
 // Points are given physically (point inversion, geometry/point_inversion.hpp) or parametrically
 // (xi in [0, 1]^3, scene naming: iga_run_setup.hpp). Stress parts are the law's converged parts at

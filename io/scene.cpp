@@ -121,8 +121,9 @@ const char* to_string(IndefiniteTangent k) {
 }
 
 const char* to_string(ProbeKind k) {
-  static const char* names[] = {"point_displacement", "face_reaction",     "volume",
-                                "stress_parts",       "surface_stability", "element_layer"};
+  static const char* names[] = {"point_displacement",  "face_reaction",     "volume",
+                                "stress_parts",        "surface_stability", "element_layer",
+                                "material_ellipticity"};
   return names[static_cast<int>(k)];
 }
 

@@ -238,14 +238,17 @@ struct OutputSettings {
 // (Pa/m^2) of the run's element tiled along the free surface nearest the point and deformed to
 // its state (io/element_layer_check.hpp; <= 0: the element itself is unstable there), and in
 // <name>.column the same for the body's own elements through the depth there, each at its own
-// state (io/element_column_check.hpp).
+// state (io/element_column_check.hpp). material_ellipticity (no point: the whole body): the law's
+// smallest isochoric wave stiffness over every quadrature point (Pa), how many points have it
+// <= 0 and where the smallest is (io/ellipticity_probe.hpp).
 enum class ProbeKind {
   point_displacement,
   face_reaction,
   volume,
   stress_parts,
   surface_stability,
-  element_layer
+  element_layer,
+  material_ellipticity
 };
 const char* to_string(ProbeKind k);
 

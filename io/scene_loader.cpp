@@ -355,9 +355,10 @@ OutputSettings read_output(std::optional<SceneTable> t, const TimeSettings& time
 ProbeSettings read_probe(SceneTable t) {
   ProbeSettings p;
   p.name = t.string("name", required);
-  const std::string kind = t.choice("kind", required,
-                                    {"point_displacement", "face_reaction", "volume",
-                                     "stress_parts", "surface_stability", "element_layer"});
+  const std::string kind =
+      t.choice("kind", required,
+               {"point_displacement", "face_reaction", "volume", "stress_parts",
+                "surface_stability", "element_layer", "material_ellipticity"});
   forbid_unused(
       t, "kind", kind,
       {{"point", {"point_displacement", "stress_parts", "surface_stability", "element_layer"}},
@@ -369,7 +370,8 @@ ProbeSettings read_probe(SceneTable t) {
            : kind == "volume"            ? ProbeKind::volume
            : kind == "stress_parts"      ? ProbeKind::stress_parts
            : kind == "surface_stability" ? ProbeKind::surface_stability
-                                         : ProbeKind::element_layer;
+           : kind == "element_layer"     ? ProbeKind::element_layer
+                                         : ProbeKind::material_ellipticity;
   if (auto point = t.optional_vector3("point"))
     p.point = to_vector(*point);
   if (auto xi = t.optional_vector3("xi"))

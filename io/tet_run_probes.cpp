@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "io/ellipticity_probe.hpp"
 #include "io/setting_check.hpp"
 #include "io/surface_stability_check.hpp"
 #include "io/tet_surface_point.hpp"
@@ -99,6 +100,10 @@ TetProbes::TetProbes(const std::vector<ProbeSettings>& probes, const TetModel& m
       case ProbeKind::element_layer:  // refused above
         columns_.push_back(s.name);
         break;
+      case ProbeKind::material_ellipticity:
+        for (std::string& column : ellipticity_probe_columns(s.name))
+          columns_.push_back(std::move(column));
+        break;
       case ProbeKind::face_reaction:
         p.nodes = selected_tet_nodes(model, *s.face, what);
         needs_force_ = true;
@@ -145,6 +150,10 @@ void TetProbes::values(const tet::TetProblem& problem, std::vector<double>& out)
         out[at] = surface_stability_value(surface_point_at(problem, p.surface));
         break;
       case ProbeKind::element_layer:  // refused at set-up
+        break;
+      case ProbeKind::material_ellipticity:
+        ellipticity_probe_values(committed_ellipticity_of(problem, kEllipticityProbeNormals),
+                                 std::span<double>(out).subspan(at, 5));
         break;
       case ProbeKind::stress_parts: {
         // The converged state at the quadrature point; its parts from the committed (converged)

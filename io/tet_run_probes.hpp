@@ -13,6 +13,9 @@
 //   surface_stability   rho c^2 of the slowest surface wave of the free surface nearest the point
 //                       as a deformed half-space (the nearest free boundary triangle,
 //                       tet_surface_point.hpp), Pa
+//   material_ellipticity the law's smallest isochoric wave stiffness over every quadrature point,
+//                       the points where it is <= 0 and where the smallest is
+//                       (ellipticity_probe.hpp)
 //
 // Points are given physically or parametrically (xi, scene naming: X = H(xi) of the solid).
 #include <Eigen/Core>

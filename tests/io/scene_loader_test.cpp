@@ -588,8 +588,22 @@ TEST_F(SceneLoader, ProbesAreChecked) {
     const std::string component = head + "point = [0, 0, 0]\ncomponent = \"x\"\n";
     EXPECT_EQ(error(component).line(), line_containing(component, "component"));
   }
+  // The material's ellipticity is scanned over the whole body: no point, face or component.
+  const std::string body = minimal() + "[[probe]]\nname = \"e\"\nkind = \"material_ellipticity\"\n";
+  ASSERT_EQ(parse(body).probes.size(), 1u);
+  EXPECT_EQ(parse(body).probes[0].kind, ProbeKind::material_ellipticity);
+  EXPECT_STREQ(to_string(ProbeKind::material_ellipticity), "material_ellipticity");
+  for (const char* key :
+       {"point = [0, 0, 0]\n", "xi = [0, 0, 0]\n", "face = \"v0\"\n", "component = \"x\"\n"}) {
+    const std::string placed = body + key;
+    const SceneError misplaced = error(placed);
+    EXPECT_EQ(misplaced.line(), 1 + static_cast<int>(std::count(body.begin(), body.end(), '\n')))
+        << key;
+    EXPECT_NE(misplaced.message().find("material_ellipticity"), std::string::npos)
+        << misplaced.message();
+  }
   const std::string typo = minimal() + "[[probe]]\nname = \"deep\"\nkind = \"surface\"\n";
-  for (const char* choice : {"surface_stability", "element_layer"})
+  for (const char* choice : {"surface_stability", "element_layer", "material_ellipticity"})
     EXPECT_NE(error(typo).message().find(choice), std::string::npos) << error(typo).message();
 }
 
