@@ -13,9 +13,10 @@ std::vector<std::string> ellipticity_probe_columns(const std::string& name) {
 }
 
 void ellipticity_probe_values(const MaterialEllipticityScan& scan, std::span<double> out) {
-  if (out.size() != 5)
-    throw std::invalid_argument("ellipticity_probe_values: 5 columns, got " +
-                                std::to_string(out.size()));
+  if (out.size() != kEllipticityProbeColumns)
+    throw std::invalid_argument(
+        "ellipticity_probe_values: " + std::to_string(kEllipticityProbeColumns) + " columns, got " +
+        std::to_string(out.size()));
   try {
     const MaterialEllipticity e = assess_material_ellipticity(scan, nullptr);
     out[0] = e.smallest.smallest;

@@ -14,6 +14,7 @@
 //
 // Points where the law cannot be evaluated are left out; where none can be, every column is NaN.
 // Costs one scan of the 96-normal coarse set per point per step, refined at each point.
+#include <cstddef>
 #include <span>
 #include <string>
 #include <vector>
@@ -25,10 +26,14 @@ namespace isomuscle::io {
 // The coarse set of wave normals of the probe's scan (the refined search is exact to round-off).
 inline constexpr int kEllipticityProbeNormals = 96;
 
+// How many columns the probe writes.
+inline constexpr std::size_t kEllipticityProbeColumns = 5;
+
 // The probe's column names, in the order ellipticity_probe_values writes them.
 std::vector<std::string> ellipticity_probe_columns(const std::string& name);
 
-// The probe's values from a scan of the committed state, written to out (5 values).
+// The probe's values from a scan of the committed state, written to out
+// (kEllipticityProbeColumns values).
 void ellipticity_probe_values(const MaterialEllipticityScan& scan, std::span<double> out);
 
 }  // namespace isomuscle::io

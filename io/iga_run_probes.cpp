@@ -251,8 +251,9 @@ void IgaProbes::values(const iga::Problem& problem, std::vector<double>& out) co
         out[p.first_column + 1] = element_column_value(problem, p.surface);
         break;
       case ProbeKind::material_ellipticity:
-        ellipticity_probe_values(committed_ellipticity_of(problem, kEllipticityProbeNormals),
-                                 std::span<double>(out).subspan(p.first_column, 5));
+        ellipticity_probe_values(
+            committed_ellipticity_of(problem, kEllipticityProbeNormals),
+            std::span<double>(out).subspan(p.first_column, kEllipticityProbeColumns));
         break;
     }
   }

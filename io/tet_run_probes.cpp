@@ -153,7 +153,7 @@ void TetProbes::values(const tet::TetProblem& problem, std::vector<double>& out)
         break;
       case ProbeKind::material_ellipticity:
         ellipticity_probe_values(committed_ellipticity_of(problem, kEllipticityProbeNormals),
-                                 std::span<double>(out).subspan(at, 5));
+                                 std::span<double>(out).subspan(at, kEllipticityProbeColumns));
         break;
       case ProbeKind::stress_parts: {
         // The converged state at the quadrature point; its parts from the committed (converged)
